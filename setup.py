@@ -1,0 +1,6 @@
+"""Installs the pure-Python library in src/pirate (catkin_python_setup)."""
+from setuptools import setup
+from catkin_pkg.python_setup import generate_distutils_setup
+
+setup(**generate_distutils_setup(packages=['pirate', 'pirate.sim'],
+                                 package_dir={'': 'src'}))

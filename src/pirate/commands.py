@@ -1,0 +1,210 @@
+"""Setpoint, Control and Limit: the three arrays sent to the robot (report 4.2-4.4).
+
+One instance of each lives in the pirate_manager process and is shared by
+every writer (Mapper, Pirate Server, motion primitives), so a mode switch
+never resets a setpoint (report 3.3). Every write passes through
+:mod:`pirate.safety`; nothing else checks limits.
+
+Publishing policy (report 4.6):
+- setpoints and limits are *marked* by writers and sent by :meth:`tick`,
+  which the owner calls at 10 Hz, so slider bursts never exceed 10 Hz and the
+  Mega's watchdog sees a steady stream while the robot is playing;
+- control modes and commands go out at once, on every change;
+- :meth:`CommandArray.publish_now` bypasses the 10 Hz pacing, for the safe
+  hold only (cancel must reach the wire fast).
+
+Pure Python: the ROS publisher and the clock are passed in.
+"""
+import threading
+import time
+
+from pirate import safety, tables
+
+
+class CommandArray(object):
+    """A fixed-size command array with thread-safe get/set and paced publish."""
+
+    size = 0
+
+    def __init__(self, publisher, make_msg, clock=time.monotonic, log=None):
+        self._publisher = publisher
+        self._make_msg = make_msg
+        self._clock = clock
+        self._log = log or (lambda text: None)
+        self._values = [0] * self.size
+        self._lock = threading.Lock()
+        self._logged = set()
+        self.published = 0
+
+    def get_all(self):
+        """All elements, as a list (a copy)."""
+        with self._lock:
+            return list(self._values)
+
+    def _warn_once(self, reason):
+        """Log a refusal once per distinct reason, so a burst logs once."""
+        if reason and reason not in self._logged:
+            self._logged.add(reason)
+            self._log(reason)
+
+    def _send(self):
+        with self._lock:
+            msg = self._make_msg(list(self._values))
+        self._publisher.publish(msg)
+        self.published += 1
+        return msg
+
+    def publish_now(self):
+        """Send the array immediately (control changes, safe hold)."""
+        return self._send()
+
+
+class Setpoint(CommandArray):
+    """The 13-element setpoint array (Table 4.1), limited per control mode."""
+
+    size = tables.SETPOINT_SIZE
+
+    def __init__(self, publisher, make_msg, control, **kwargs):
+        super(Setpoint, self).__init__(publisher, make_msg, **kwargs)
+        self._control = control
+        self.enabled = False
+
+    def set(self, name, value):
+        """Write element ``name``; return the counts actually stored.
+
+        Out-of-range values are clamped (and the reason logged once); a value
+        that is not a finite number raises :class:`pirate.safety.Refused`.
+        """
+        elem = tables.element(name)
+        try:
+            counts, reason = safety.limit_setpoint(name, self._control.mode_of(name), value)
+        except safety.Refused as refused:
+            self._warn_once(str(refused))
+            raise
+        self._warn_once(reason)
+        with self._lock:
+            self._values[elem.index] = counts
+        return counts
+
+    def set_by_board(self, board, motor, value):
+        """Write the element of PICO ``board`` / ``motor`` (report Fig A.1)."""
+        return self.set(tables.SETPOINT_ELEMENTS[tables.index_of(board, motor)].name, value)
+
+    def get(self, name):
+        """Current counts of element ``name``."""
+        with self._lock:
+            return self._values[tables.element(name).index]
+
+    def set_all(self, values):
+        """Write the whole array (13 values), each through the limits."""
+        if len(values) != self.size:
+            raise safety.Refused('setpoint array needs %d values, got %d' % (self.size, len(values)))
+        for elem, value in zip(tables.SETPOINT_ELEMENTS, values):
+            self.set(elem.name, value)
+
+    def tick(self):
+        """10 Hz pacing: send the array while enabled (after Play)."""
+        if self.enabled:
+            return self._send()
+        return None
+
+
+class Control(CommandArray):
+    """The 12-element control-mode array (Table 4.2); changes go out at once."""
+
+    size = tables.CONTROL_SIZE
+
+    def set_mode(self, name, mode):
+        """Put element ``name`` in ``mode`` ('pwm', 'torque', ...); publish if changed."""
+        index = tables.element(name).index
+        if mode not in safety.MODE_CODES:
+            raise safety.Refused('unknown control mode %r (known: %s)'
+                                 % (mode, sorted(safety.MODE_CODES)))
+        return self.set_code(index, safety.MODE_CODES[mode])
+
+    def set_code(self, index, code):
+        """Write a raw mode/command code at ``index``; publish at once if changed."""
+        try:
+            safety.check_control_code(index, code)
+        except safety.Refused as refused:
+            self._warn_once(str(refused))
+            raise
+        with self._lock:
+            changed = self._values[index] != code
+            self._values[index] = code
+        if changed:
+            self._send()
+        return changed
+
+    def command(self, name):
+        """Send a command at the command index: 'play', 'stop', 'no_limits_all'."""
+        return self.set_code(tables.element('rear_module').index, safety.COMMAND_CODES[name])
+
+    def mode_of(self, name):
+        """The mode name element ``name`` is in ('pwm' for commands/unknown)."""
+        index = tables.element(name).index
+        if index >= self.size:
+            return 'pwm'  # rear LED: no control mode, PWM only
+        with self._lock:
+            code = self._values[index]
+        mode = safety.CODE_NAMES.get(code, 'pwm')
+        return mode if mode in safety.MODE_CODES else 'pwm'
+
+    def get(self, index):
+        """Raw code at ``index``."""
+        with self._lock:
+            return self._values[index]
+
+    def set_all(self, codes):
+        """Write all 12 codes (each checked); publish once if anything changed."""
+        if len(codes) != self.size:
+            raise safety.Refused('control array needs %d codes, got %d' % (self.size, len(codes)))
+        for index, code in enumerate(codes):
+            safety.check_control_code(index, code)
+        with self._lock:
+            changed = self._values != list(codes)
+            self._values = list(codes)
+        if changed:
+            self._send()
+        return changed
+
+
+class Limit(CommandArray):
+    """The 4-element torque-limit array (Table 4.3); uint16, 0xFFFF = none."""
+
+    size = tables.LIMIT_SIZE
+
+    def __init__(self, publisher, make_msg, **kwargs):
+        super(Limit, self).__init__(publisher, make_msg, **kwargs)
+        self._values = [safety.NO_LIMIT] * self.size
+        self.enabled = False
+
+    def set(self, name, value):
+        """Write the torque limit of bend ``name``; return the stored value."""
+        try:
+            counts, reason = safety.limit_torque_limit(name, value)
+        except safety.Refused as refused:
+            self._warn_once(str(refused))
+            raise
+        self._warn_once(reason)
+        with self._lock:
+            self._values[tables.limit_index(name)] = counts
+        return counts
+
+    def get(self, name):
+        """Current torque limit of bend ``name``."""
+        with self._lock:
+            return self._values[tables.limit_index(name)]
+
+    def set_all(self, values):
+        """Write all four limits."""
+        if len(values) != self.size:
+            raise safety.Refused('limit array needs %d values, got %d' % (self.size, len(values)))
+        for name, value in zip(tables.LIMIT_ELEMENTS, values):
+            self.set(name, value)
+
+    def tick(self):
+        """10 Hz pacing: send the limits while enabled (after Play)."""
+        if self.enabled:
+            return self._send()
+        return None

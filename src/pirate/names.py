@@ -1,0 +1,19 @@
+"""Topic, service and action names, chosen once (README "Interfaces").
+
+The array and state topics are those of the report and the author's code
+(SPEC 3, Fig 5.1): a Mega flashed for the original system subscribes to
+exactly these. Remap in launch files rather than renaming here.
+"""
+SETPOINT_TOPIC = '/pirate/setpoint_array'     # pirate/SetpointArray
+CONTROL_TOPIC = '/pirate/control_array'       # pirate/ControlArray
+LIMITS_TOPIC = '/pirate/limits_array'         # pirate/LimitArray
+SMALL_STATE_TOPIC = '/pirate/Small_State'     # pirate/SmallState, one per board
+ROBOT_STATE_TOPIC = '/pirate/state'           # pirate/RobotState, SI units
+JOINT_STATES_TOPIC = '/joint_states'          # sensor_msgs/JointState (RViz)
+IMU_TOPIC = '/pirate/imu'                     # sensor_msgs/Imu, rear-part roll
+MIDI_INPUT_TOPIC = '/ram/input/midi'          # pirate/MidiInput
+MIDI_OUTPUT_TOPIC = '/ram/input/midiout'      # pirate/MidiOutput
+JOINT_SENSORS_SERVICE = '/pirate/joint_sensors'   # pirate/JointSensors
+IMU_SENSOR_SERVICE = '/pirate/imu_sensor'         # pirate/ImuSensor
+SERVER_STATUS_SERVICE = '/pirate/server_status'   # pirate/ServerStatus
+PIRATE_ACTION = '/pirate'                     # pirate/PirateAction
