@@ -1,0 +1,95 @@
+"""ROS edge of the simulated robot: the "simulated serial node".
+
+Takes the place of serial link, Mega, PICO boards and robot. Subscribes the
+three command arrays as the Mega does and publishes one raw Small State per
+board every Mega refresh cycle (10 Hz, SPEC 2), while the model steps at the
+PICO loop rate (50 Hz).
+
+Time: with ``use_sim_time`` the node owns ``/clock`` and advances it by
+``~rate`` simulated seconds per wall second (``~rate`` 1 = real time);
+without it, it runs in wall time and ``~rate`` must be 1.
+
+Private params: ``~pipe_diameter`` (mm, 90 or 110), ``~orientation`` (rad,
+start roll, Fig 4.7), ``~joints`` (dict joint -> rad, start angles),
+``~seed`` (sensor noise seed, -1 none), ``~rate`` (real-time factor).
+"""
+import threading
+import time
+
+import rospy
+from rosgraph_msgs.msg import Clock
+
+from pirate import names, tables
+from pirate.msg import ControlArray, LimitArray, SetpointArray, SmallState
+from pirate.sim.model import PirateModel
+
+PICO_PERIOD_S = 0.02    # PICO control loops, 50 Hz
+MEGA_PERIOD_S = 0.1     # Mega refresh of all nine boards, about 10 Hz
+CLOCK_START_S = 1.0     # sim time 0 means "no clock yet" to rospy
+
+
+class SimRobotNode(object):
+    """Wires a :class:`PirateModel` to the topics a real Mega uses."""
+
+    def __init__(self):
+        self.model = PirateModel(
+            pipe_diameter=rospy.get_param('~pipe_diameter', 90),
+            orientation=float(rospy.get_param('~orientation', 1.5707963)),
+            joints=rospy.get_param('~joints', {}),
+            seed=int(rospy.get_param('~seed', -1)))
+        self.rate = float(rospy.get_param('~rate', 1.0))
+        self.sim_time = rospy.get_param('/use_sim_time', False)
+        if self.rate <= 0 or (not self.sim_time and self.rate != 1.0):
+            rospy.logwarn('~rate %.2f needs use_sim_time and > 0; running in real time', self.rate)
+            self.rate = 1.0
+        self._lock = threading.Lock()
+        self._arrays = [list(self.model.setpoints), list(self.model.modes), list(self.model.limits)]
+        self._logged = set()
+        self._state_pub = rospy.Publisher(names.SMALL_STATE_TOPIC, SmallState, queue_size=len(tables.BOARDS) * 4)
+        self._clock_pub = rospy.Publisher('/clock', Clock, queue_size=1) if self.sim_time else None
+        rospy.Subscriber(names.SETPOINT_TOPIC, SetpointArray, self._store, 0, queue_size=10)
+        rospy.Subscriber(names.CONTROL_TOPIC, ControlArray, self._store, 1, queue_size=10)
+        rospy.Subscriber(names.LIMITS_TOPIC, LimitArray, self._store, 2, queue_size=10)
+
+    def _store(self, msg, which):
+        with self._lock:
+            self._arrays[which] = list(msg.data)
+            reasons = self.model.command(*self._arrays)
+        for reason in reasons:
+            if reason not in self._logged:
+                self._logged.add(reason)
+                rospy.logwarn('sim_robot: %s', reason)
+
+    def _publish_states(self):
+        for board in tables.BOARDS:
+            self._state_pub.publish(SmallState(board=board, data=self.model.small_state(board)))
+
+    def spin(self):
+        """Step the model; publish states every Mega cycle and /clock."""
+        steps_per_cycle = int(round(MEGA_PERIOD_S / PICO_PERIOD_S))
+        sim_t = CLOCK_START_S
+        wall_next = time.monotonic()
+        rospy.loginfo('sim_robot: %d mm pipe, roll %.2f rad, rate x%.1f%s',
+                      round(self.model.pipe_diameter_m * 1000), self.model.rear_roll, self.rate,
+                      ' (sim time)' if self.sim_time else '')
+        step = 0
+        while not rospy.is_shutdown():
+            with self._lock:
+                self.model.step(PICO_PERIOD_S)
+            sim_t += PICO_PERIOD_S
+            step += 1
+            if self._clock_pub:
+                self._clock_pub.publish(Clock(clock=rospy.Time.from_sec(sim_t)))
+            if step % steps_per_cycle == 0:
+                self._publish_states()
+            wall_next += PICO_PERIOD_S / self.rate
+            delay = wall_next - time.monotonic()
+            if delay > 0:
+                time.sleep(delay)       # this node is the clock: it paces on the wall
+            elif delay < -0.5:
+                wall_next = time.monotonic()   # fell behind; do not try to catch up
+
+
+def main():
+    rospy.init_node('sim_robot')
+    SimRobotNode().spin()

@@ -1,0 +1,117 @@
+"""Pirate State: raw Small State messages -> the robot's state in SI units.
+
+The blackboard of report 4.8.2: keeps the newest value of every sensor and
+hands out a consistent snapshot on request. Pure Python; the caller passes
+the (monotonic) time of arrival, so staleness is testable and does not stop
+when a simulated clock stops.
+
+Bad input rule (one place): a Small State from an unknown board, of the
+wrong length, or with a value outside what its sensor can produce is
+dropped whole, with a reason the node logs once; the previous values stay.
+"""
+import collections
+import math
+
+from pirate import tables, units
+
+#: Newest data older than this (s, monotonic) makes the state stale: three
+#: Mega cycles of 0.1 s missed.
+STALE_AFTER_S = 0.3
+#: Largest joint angle an AS5055 reports (half a turn either way).
+ANGLE_MAX_COUNTS = 2048
+#: An accelerometer reading this far from 1 g is not gravity.
+GRAVITY_TOLERANCE = 0.5
+
+Snapshot = collections.namedtuple(
+    'Snapshot', 'name position effort orientation odometry velocity stale age')
+
+
+class BadState(ValueError):
+    """A Small State that was dropped, with the reason."""
+
+
+class StateAssembler(object):
+    """Accumulates Small States; answers snapshots in SI units."""
+
+    def __init__(self, stale_after=STALE_AFTER_S):
+        self.stale_after = stale_after
+        self._raw = {}                  # board -> list of 9 ints
+        self._arrival = {}              # board -> monotonic time
+        self._odometry_counts = 0       # unwrapped
+        self._last_odometry_raw = None
+        self._orientation = math.pi / 2
+        self._previous_board = None
+
+    def update(self, board, data, now):
+        """Take one Small State; return True when a refresh cycle is complete.
+
+        Raises :class:`BadState` (and keeps the old values) for bad input.
+        """
+        data = list(data)
+        _check(board, data)
+        if board == tables.IMU_BOARD:
+            self._orientation = _orientation(data)
+        if board == tables.ODOMETRY_BOARD:
+            self._track_odometry(data[tables.SS_ODOMETRY])
+        self._raw[board] = data
+        self._arrival[board] = now
+        complete = board == tables.BOARDS[-1] or (
+            self._previous_board is not None and board <= self._previous_board)
+        self._previous_board = board
+        return complete
+
+    def _track_odometry(self, raw):
+        if self._last_odometry_raw is not None:
+            self._odometry_counts += units.unwrap_int16(self._last_odometry_raw, raw)
+        else:
+            self._odometry_counts = raw
+        self._last_odometry_raw = raw
+
+    def age(self, now):
+        """Seconds since the newest Small State (inf if none yet)."""
+        return now - max(self._arrival.values()) if self._arrival else float('inf')
+
+    def snapshot(self, now):
+        """The robot's state now, as a :data:`Snapshot` (rad, mNm, mm, mm/s)."""
+        positions, efforts = [], []
+        for joint in tables.JOINTS:
+            raw = self._raw.get(joint.board)
+            positions.append(_joint_angle(joint, raw))
+            efforts.append(units.spring_to_mnm(raw[tables.SS_BEND_LOAD])
+                           if raw is not None and joint.has_spring else 0.0)
+        drive = self._raw.get(tables.ODOMETRY_BOARD)
+        velocity = units.wheel_counts_to_mm_s(drive[tables.SS_VELOCITY]) if drive else 0.0
+        age = self.age(now)
+        return Snapshot(list(tables.JOINT_NAMES), positions, efforts, self._orientation,
+                        units.odometry_to_mm(self._odometry_counts), velocity,
+                        age > self.stale_after, age)
+
+
+def _check(board, data):
+    if board not in tables.BOARDS:
+        raise BadState('Small State from unknown board %r (boards are %d-%d); dropped'
+                       % (board, tables.BOARDS[0], tables.BOARDS[-1]))
+    if len(data) != tables.SMALL_STATE_SIZE:
+        raise BadState('Small State of board %d has %d elements, not %d; dropped'
+                       % (board, len(data), tables.SMALL_STATE_SIZE))
+    if board == tables.IMU_BOARD:
+        g = math.hypot(data[tables.SS_IMU_Y], data[tables.SS_IMU_Z]) / units.IMU_COUNTS_PER_G
+        if abs(g - 1.0) > GRAVITY_TOLERANCE:
+            raise BadState('IMU of board %d reads %.2f g, not gravity; dropped' % (board, g))
+    elif any(j.board == board and j.angle_unit == tables.ENCODER for j in tables.JOINTS):
+        if abs(data[tables.SS_ANGLE]) > ANGLE_MAX_COUNTS:
+            raise BadState('angle %d counts of board %d is beyond an AS5055 (+-%d); dropped'
+                           % (data[tables.SS_ANGLE], board, ANGLE_MAX_COUNTS))
+
+
+def _orientation(data):
+    return units.gravity_to_roll(data[tables.SS_IMU_Y], data[tables.SS_IMU_Z])
+
+
+def _joint_angle(joint, raw):
+    if raw is None:
+        return 0.0
+    counts = raw[tables.SS_ANGLE]
+    if joint.angle_unit == tables.ROTATION:
+        return units.rotation_to_rad(counts)
+    return units.encoder_to_rad(counts)

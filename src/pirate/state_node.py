@@ -1,0 +1,104 @@
+"""ROS edge of Pirate State (report 4.8, 5.11).
+
+Subscribes the per-board Small State, and at the end of every Mega refresh
+cycle publishes pirate/RobotState (for event-driven guards),
+sensor_msgs/JointState (RViz) and sensor_msgs/Imu (orientation). Serves the
+joint-sensors and IMU blackboards. A 10 Hz wall-clock check republishes the
+state marked ``stale`` when the robot stops reporting, so nobody mistakes old
+angles for fresh ones.
+"""
+import math
+import threading
+import time
+
+import rospy
+from sensor_msgs.msg import Imu, JointState
+
+from pirate import names
+from pirate.msg import RobotState, SmallState
+from pirate.srv import ImuSensor, ImuSensorResponse, JointSensors, JointSensorsResponse
+from pirate.state import BadState, StateAssembler
+
+
+def roll_quaternion(orientation):
+    """Quaternion (x, y, z, w) of the rear part for a Fig 4.7 orientation.
+
+    ROS body frame: x forward, z up. Upright (pi/2) is the identity; lying on
+    its right side (0) is a +pi/2 turn about x (the top points to -y).
+    """
+    half = (math.pi / 2 - orientation) / 2.0
+    return math.sin(half), 0.0, 0.0, math.cos(half)
+
+
+class PirateStateNode(object):
+    """Small State in, state topics and blackboard services out."""
+
+    def __init__(self):
+        self.assembler = StateAssembler(rospy.get_param('~stale_after', 0.3))
+        self._lock = threading.Lock()
+        self._logged = set()
+        self._was_stale = False
+        self._state_pub = rospy.Publisher(names.ROBOT_STATE_TOPIC, RobotState, queue_size=10)
+        self._joint_pub = rospy.Publisher(names.JOINT_STATES_TOPIC, JointState, queue_size=10)
+        self._imu_pub = rospy.Publisher(names.IMU_TOPIC, Imu, queue_size=10)
+        rospy.Service(names.JOINT_SENSORS_SERVICE, JointSensors, self._joint_sensors)
+        rospy.Service(names.IMU_SENSOR_SERVICE, ImuSensor, self._imu_sensor)
+        rospy.Subscriber(names.SMALL_STATE_TOPIC, SmallState, self._on_small_state, queue_size=50)
+        rospy.Timer(rospy.Duration(0.1), self._check_stale)
+
+    def _snapshot(self):
+        with self._lock:
+            return self.assembler.snapshot(time.monotonic())
+
+    def _on_small_state(self, msg):
+        try:
+            with self._lock:
+                complete = self.assembler.update(msg.board, msg.data, time.monotonic())
+        except BadState as bad:
+            if str(bad) not in self._logged:
+                self._logged.add(str(bad))
+                rospy.logwarn('pirate_state: %s', bad)
+            return
+        if complete:
+            self._publish(self._snapshot())
+
+    def _check_stale(self, _event):
+        snap = self._snapshot()
+        if snap.stale and snap.age != float('inf'):
+            if not self._was_stale:
+                rospy.logwarn('pirate_state: no Small State for %.2f s; state is stale', snap.age)
+            self._publish(snap)
+        self._was_stale = snap.stale
+
+    def _publish(self, snap):
+        now = rospy.Time.now()
+        state = RobotState(name=snap.name, position=snap.position, effort=snap.effort,
+                           orientation=snap.orientation, odometry=snap.odometry,
+                           velocity=snap.velocity, stale=snap.stale)
+        state.header.stamp = now
+        self._state_pub.publish(state)
+        joints = JointState(name=snap.name, position=snap.position, effort=snap.effort)
+        joints.header.stamp = now
+        self._joint_pub.publish(joints)
+        imu = Imu()
+        imu.header.stamp = now
+        imu.header.frame_id = 'rear_part'
+        q = roll_quaternion(snap.orientation)
+        imu.orientation.x, imu.orientation.y, imu.orientation.z, imu.orientation.w = q
+        self._imu_pub.publish(imu)
+
+    def _joint_sensors(self, _req):
+        snap = self._snapshot()
+        return JointSensorsResponse(name=snap.name, position=snap.position, effort=snap.effort,
+                                    odometry=snap.odometry, stale=snap.stale, age=snap.age)
+
+    def _imu_sensor(self, _req):
+        snap = self._snapshot()
+        return ImuSensorResponse(roll=snap.orientation, pitch=0.0, yaw=0.0,
+                                 stale=snap.stale, age=snap.age)
+
+
+def main():
+    rospy.init_node('pirate_state')
+    PirateStateNode()
+    rospy.spin()

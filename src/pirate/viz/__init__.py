@@ -1,0 +1,1 @@
+"""Visualisation of PIRATE: URDF generator, RViz helper node, run plots."""

@@ -1,0 +1,197 @@
+"""Codec unit tests: frames written out byte by byte from the rosserial
+protocol description (wiki.ros.org/rosserial/Overview/Protocol), the
+protocol's own payloads, the host session and the outbox. No ROS master."""
+import struct
+
+import pytest
+
+from pirate.rosserial import messages, protocol, session
+from pirate.rosserial.outbox import Outbox
+from pirate.rosserial.protocol import Frame, FrameParser
+
+# The host's topic request: topic 0, empty payload (rosserial_python sends it).
+TOPIC_REQUEST = bytes([0xFF, 0xFE, 0x00, 0x00, 0xFF, 0x00, 0x00, 0xFF])
+# ID_TX_STOP (11): message checksum 255 - 11 = 0xF4.
+TX_STOP = bytes([0xFF, 0xFE, 0x00, 0x00, 0xFF, 0x0B, 0x00, 0xF4])
+# Time reply secs=1 nsecs=2 on ID_TIME (10): len 8 -> len chk 0xF7,
+# msg chk 255 - (10 + 1 + 2) = 0xF2.
+TIME_1_2 = bytes([0xFF, 0xFE, 0x08, 0x00, 0xF7, 0x0A, 0x00,
+                  0x01, 0x00, 0x00, 0x00, 0x02, 0x00, 0x00, 0x00, 0xF2])
+# SetpointArray (int16[13], fixed size: 26 bytes, no length prefix) on topic
+# 100 with data[0] = 1: len chk 255 - 26 = 0xE5, msg chk 255 - (100 + 1) = 0x9A.
+SETPOINT_FRAME = (bytes([0xFF, 0xFE, 0x1A, 0x00, 0xE5, 0x64, 0x00, 0x01, 0x00])
+                  + bytes(24) + bytes([0x9A]))
+
+
+def test_known_frames_encode_byte_for_byte():
+    assert protocol.encode(protocol.ID_PUBLISHER) == TOPIC_REQUEST
+    assert protocol.encode(protocol.ID_TX_STOP) == TX_STOP
+    assert protocol.encode(protocol.ID_TIME, messages.encode_time(1, 2)) == TIME_1_2
+    assert protocol.encode(100, struct.pack('<13h', 1, *[0] * 12)) == SETPOINT_FRAME
+
+
+@pytest.mark.parametrize('raw,topic', [(TOPIC_REQUEST, 0), (TX_STOP, 11),
+                                       (TIME_1_2, 10), (SETPOINT_FRAME, 100)])
+def test_known_frames_decode(raw, topic):
+    frames = FrameParser().feed(raw)
+    assert [f.topic for f in frames] == [topic]
+    assert frames[0].payload == raw[7:-1]
+
+
+def test_checksums_of_long_length_wrap():
+    # len 0x0102: 255 - (2 + 1) = 252
+    assert protocol.length_checksum(0x0102) == 252
+    assert protocol.message_checksum(0x0165, b'\xff\xff') == 255 - ((0x65 + 1 + 510) % 256)
+
+
+def test_byte_at_a_time_equals_whole():
+    stream = TOPIC_REQUEST + SETPOINT_FRAME + TIME_1_2
+    parser = FrameParser()
+    one_by_one = [f for b in stream for f in parser.feed(bytes([b]))]
+    assert one_by_one == FrameParser().feed(stream)
+    assert len(one_by_one) == 3
+
+
+def test_bad_message_checksum_is_dropped_and_counted():
+    bad = bytearray(SETPOINT_FRAME)
+    bad[-1] ^= 0x01
+    parser = FrameParser()
+    assert parser.feed(bytes(bad)) == []
+    assert parser.stats.checksum_errors == 1
+    assert parser.feed(SETPOINT_FRAME) == [Frame(100, SETPOINT_FRAME[7:-1])]
+
+
+def test_bad_length_checksum_resyncs_to_next_frame():
+    bad = bytearray(TIME_1_2)
+    bad[4] ^= 0x10
+    parser = FrameParser()
+    frames = parser.feed(bytes(bad) + TX_STOP)
+    assert frames == [Frame(11, b'')]
+    assert parser.stats.length_errors == 1
+    assert parser.resyncs >= 1
+
+
+def test_frame_inside_truncated_frame_is_found():
+    # a header promising 26 bytes, cut off after 3, then a whole frame
+    stream = SETPOINT_FRAME[:10] + TIME_1_2
+    assert FrameParser().feed(stream) == [Frame(10, TIME_1_2[7:-1])]
+
+
+def test_wrong_protocol_version_is_rejected():
+    groovy = bytes([0xFF, 0xFF]) + TOPIC_REQUEST[2:]   # pre-Hydro version byte
+    parser = FrameParser()
+    assert parser.feed(groovy) == []
+    assert parser.feed(TOPIC_REQUEST) == [Frame(0, b'')]
+
+
+def test_oversize_length_is_garbage():
+    parser = FrameParser(max_payload=16)
+    assert parser.feed(SETPOINT_FRAME + TX_STOP) == [Frame(11, b'')]
+    assert parser.stats.oversize == 1
+
+
+def test_encode_rejects_out_of_range():
+    with pytest.raises(ValueError):
+        protocol.encode(70000)
+
+
+def test_topic_info_roundtrip_and_layout():
+    info = messages.TopicInfo(101, '/pirate/Small_State', 'pirate/SmallState',
+                              'abc', 280)
+    raw = messages.encode_topic_info(info)
+    assert raw[:2] == b'\x65\x00'
+    assert raw[2:6] == struct.pack('<I', len('/pirate/Small_State'))
+    assert raw[-4:] == struct.pack('<i', 280)
+    assert messages.decode_topic_info(raw) == info
+    with pytest.raises(messages.DecodeError):
+        messages.decode_topic_info(raw[:-1])
+    with pytest.raises(messages.DecodeError):
+        messages.decode_topic_info(raw + b'\x00')
+
+
+def test_time_and_log_and_params():
+    assert messages.decode_time(messages.encode_time(7, 999)) == (7, 999)
+    assert messages.time_from_seconds(3.9999999999) == (4, 0)
+    log = struct.pack('<BI', 2, 5) + b'hello'
+    assert messages.decode_log(log) == ('warn', 'hello')
+    assert messages.decode_param_request(struct.pack('<I', 2) + b'ab') == 'ab'
+    assert messages.encode_param_response() == bytes(12)
+
+
+# -- session -----------------------------------------------------------------
+def _info_frame(kind, topic_id, name):
+    info = messages.TopicInfo(topic_id, name, 'pirate/SetpointArray', 'md5', 64)
+    return Frame(kind, messages.encode_topic_info(info))
+
+
+def _handshake(sess, now=0.0):
+    assert sess.opened(now) == TOPIC_REQUEST
+    sess.on_frame(_info_frame(protocol.ID_PUBLISHER, 100, '/pirate/Small_State'), now, 0)
+    sess.on_frame(_info_frame(protocol.ID_SUBSCRIBER, 101, '/pirate/setpoint_array'), now, 0)
+    reply, events = sess.on_frame(Frame(protocol.ID_TIME, b''), now, 12.5)
+    return reply, events
+
+
+def test_session_handshake_then_up():
+    sess = session.HostSession()
+    assert sess.state == session.DOWN
+    reply, events = _handshake(sess)
+    assert reply == protocol.encode(protocol.ID_TIME, messages.encode_time(12, 500000000))
+    assert ('link', session.UP) in events
+    assert sess.subscriber_id('/pirate/setpoint_array') == 101
+    assert sess.subscriber_id('/nothing') is None
+
+
+def test_session_not_up_without_time_request():
+    sess = session.HostSession()
+    sess.opened(0.0)
+    sess.on_frame(_info_frame(protocol.ID_PUBLISHER, 100, '/a'), 0.0, 0)
+    assert sess.state == session.NEGOTIATING
+    # no answer: the request is repeated every request_interval
+    assert sess.tick(0.5) == (b'', [])
+    assert sess.tick(1.0)[0] == TOPIC_REQUEST
+
+
+def test_session_lost_sync_after_silence():
+    sess = session.HostSession(sync_timeout=1.0)
+    _handshake(sess)
+    assert sess.tick(0.9) == (b'', [])
+    data, events = sess.tick(1.1)
+    assert data == TOPIC_REQUEST
+    assert ('link', session.NEGOTIATING) in events
+    assert sess.lost_syncs == 1 and not sess.subscribers
+
+
+def test_session_unknown_topic_means_device_reset():
+    sess = session.HostSession()
+    _handshake(sess)
+    assert sess.on_frame(Frame(100, b'x'), 0.1, 0)[1] == [('message', (100, b'x'))]
+    data, events = sess.on_frame(Frame(150, b''), 0.2, 0)
+    assert data == TOPIC_REQUEST and sess.state == session.NEGOTIATING
+
+
+def test_session_rejects_bad_topic_info():
+    sess = session.HostSession()
+    sess.opened(0.0)
+    _, events = sess.on_frame(Frame(protocol.ID_PUBLISHER, b'\x01\x02'), 0.0, 0)
+    assert events[0].kind == 'error'
+    _, events = sess.on_frame(_info_frame(protocol.ID_PUBLISHER, 7, '/x'), 0.0, 0)
+    assert events[0].kind == 'error' and not sess.publishers
+
+
+def test_session_answers_param_request_empty():
+    sess = session.HostSession()
+    sess.opened(0.0)
+    data, _ = sess.on_frame(Frame(protocol.ID_PARAMETER_REQUEST, b''), 0.0, 0)
+    assert FrameParser().feed(data) == [Frame(protocol.ID_PARAMETER_REQUEST, bytes(12))]
+
+
+# -- outbox ------------------------------------------------------------------
+def test_outbox_keeps_latest_only_and_drops_stale():
+    box = Outbox(max_age=0.2)
+    for i in range(50):
+        box.put('/sp', bytes([i]), now=i * 0.01)
+    box.put('/ctl', b'c', now=0.0)
+    assert box.take(now=0.55) == [('/sp', bytes([49]))]
+    assert box.stale_dropped == 1 and box.replaced == 49
+    assert box.take(now=1.0) == []
