@@ -16,7 +16,7 @@ ENV := source $(WS)/devel/setup.bash &&
 .PHONY: deps build demo test test-unit test-rostest test-firmware lint bench clean
 
 deps:
-	@scripts/ensure_deps
+	@bash scripts/ensure_deps
 
 $(WS)/src/pirate:
 	@mkdir -p $(WS)/src
@@ -28,16 +28,16 @@ build: deps $(WS)/src/pirate
 	@echo "built workspace $(WS)"
 
 demo: build
-	@$(ENV) scripts/demo
+	@$(ENV) bash scripts/demo
 
 test: build
-	@$(ENV) scripts/run_tests
+	@$(ENV) bash scripts/run_tests
 
 test-unit: build
 	@$(ENV) python3 -m pytest -q test/unit
 
 test-rostest: build
-	@$(ENV) scripts/run_rostests
+	@$(ENV) bash scripts/run_rostests
 
 lint: build
 	@$(ENV) catkin_lint -W2 --strict .

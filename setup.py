@@ -1,6 +1,5 @@
 """Installs the pure-Python library in src/pirate (catkin_python_setup)."""
-from setuptools import setup
+from setuptools import find_packages, setup
 from catkin_pkg.python_setup import generate_distutils_setup
 
-setup(**generate_distutils_setup(packages=['pirate', 'pirate.sim'],
-                                 package_dir={'': 'src'}))
+setup(**generate_distutils_setup(packages=find_packages('src'), package_dir={'': 'src'}))

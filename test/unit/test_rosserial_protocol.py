@@ -72,9 +72,10 @@ def test_bad_length_checksum_resyncs_to_next_frame():
 
 
 def test_frame_inside_truncated_frame_is_found():
-    # a header promising 26 bytes, cut off after 3, then a whole frame
-    stream = SETPOINT_FRAME[:10] + TIME_1_2
-    assert FrameParser().feed(stream) == [Frame(10, TIME_1_2[7:-1])]
+    # a header promising 26 bytes, cut off after 3, then whole frames: the
+    # parser waits for 26 bytes, the checksum fails, it rescans inside them
+    stream = SETPOINT_FRAME[:10] + TIME_1_2 + TX_STOP
+    assert FrameParser().feed(stream) == [Frame(10, TIME_1_2[7:-1]), Frame(11, b'')]
 
 
 def test_wrong_protocol_version_is_rejected():

@@ -41,6 +41,10 @@ def _entry(raw):
     where = 'panel map entry %r' % (raw,)
     if not isinstance(raw, dict) or 'channel' not in raw:
         raise ConfigError('%s: needs at least channel and action' % where)
+    unknown = set(raw) - set(Entry._fields)
+    if unknown:
+        raise ConfigError('%s: unknown keys %s (a comma inside an unquoted value?)'
+                          % (where, sorted(unknown)))
     action = raw.get('action')
     if action not in ACTIONS:
         raise ConfigError('%s: unknown action %r (known: %s)' % (where, action, ', '.join(ACTIONS)))

@@ -42,7 +42,8 @@ Constants and where they come from
 - ROTATION_MAX_RAD_S 0.3, ROTATION_GAIN 3 /s: the rotational module's
   position loop; a 0.1 rad re-adjust takes about 0.5 s, so the nominal
   re-adjust totals about 23 s (report: about 25 s).
-- Wheels: first-order lag WHEEL_TAU_S 0.2 s to the velocity setpoint.
+- Wheels: first-order lag WHEEL_TAU_S 0.05 s to the velocity setpoint (the
+  PICO's 50 Hz velocity loop settles in a few samples).
 - Worm gears (24:1) are self-locking: a motor with no drive, or a stopped
   board, holds its joint where it is.
 - Spring: effort in contact = commanded torque, TORQUE_MNM_PER_COUNT mNm per
@@ -76,7 +77,7 @@ POSITION_GAIN = 3.0              # 1/s, PICO position loops (camera, front, rota
 POSITION_MAX_RAD_S = 0.5
 ROTATION_MAX_RAD_S = 0.3
 ROTATION_GAIN = 3.0
-WHEEL_TAU_S = 0.2
+WHEEL_TAU_S = 0.05
 WHEEL_PWM_MAX_MM_S = 200.0
 TORQUE_MNM_PER_COUNT = 1.6
 CLAMP_TOLERANCE = 0.03           # rad from the wall that still counts as clamped

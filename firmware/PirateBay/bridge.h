@@ -1,0 +1,63 @@
+// The bridge: laptop arrays in (rosserial), PICO board commands out (RS485),
+// board state back as one Small State per board.
+//
+// Safety rules (issue #5, report 7.2):
+// - after power-up, a reset or any new handshake the boards get STOP until a
+//   setpoint array arrives after the handshake ("armed");
+// - no setpoint array for WATCHDOG_MS, or the link lost: disarm and send
+//   every board STOP at once (a broadcast), then STOP in every refresh;
+// - every array is length-checked, every control code range-checked; a bad
+//   message is dropped whole and counted, the previous values stay.
+#ifndef PIRATE_BRIDGE_H
+#define PIRATE_BRIDGE_H
+
+#include <stdint.h>
+
+#include "pico_bus.h"
+#include "pirate_generated.h"
+#include "rosserial_device.h"
+
+// 300 ms budget from the last valid message to every board safe (issue #5),
+// less the time to notice (one loop) and to send the broadcast (~1 ms),
+// less one bus reply timeout the broadcast may wait for.
+#define WATCHDOG_MS 250
+#define CYCLE_MS 100               // refresh of all nine boards, ~10 Hz (SPEC 2)
+#ifndef PIRATE_BUS_REPLY_TIMEOUT_MS
+#define PIRATE_BUS_REPLY_TIMEOUT_MS BUS_REPLY_TIMEOUT_MS
+#endif
+
+struct BridgeCounters {
+  uint16_t setpoints, controls, limits, rejected, watchdog_trips, stops_sent,
+      bus_timeouts, states;
+};
+
+class Bridge : public RosHandler {
+ public:
+  Bridge();
+  void attach(RosserialDevice *ros) { ros_ = ros; }
+  void poll(uint32_t now);
+  void on_bus_byte(uint8_t b, uint32_t now);
+
+  void on_message(uint16_t topic, const uint8_t *payload, uint16_t len, uint32_t now);
+  void on_configured(uint32_t now);
+  void on_unconfigured(uint32_t now);
+
+  bool armed() const { return armed_; }
+  int16_t setpoint(uint8_t i) const { return i < SETPOINT_SIZE ? setpoint_[i] : 0; }
+  BridgeCounters counters;
+
+ private:
+  void disarm();
+  void request(uint8_t row, uint32_t now);
+
+  RosserialDevice *ros_;
+  int16_t setpoint_[SETPOINT_SIZE];
+  int16_t control_[CONTROL_SIZE];
+  uint16_t limit_[LIMIT_SIZE];
+  bool armed_, stop_pending_, waiting_;
+  uint32_t last_setpoint_ms_, cycle_start_ms_, request_ms_;
+  uint8_t next_row_, seq_;
+  BusReplyParser reply_;
+};
+
+#endif

@@ -1,0 +1,235 @@
+// Native unit tests of the firmware logic over the fake hardware layer.
+// Prints one line per failed check and a summary "N passed, N failed".
+#include <stdio.h>
+#include <string.h>
+
+#include <string>
+#include <vector>
+
+#include "frames.h"
+#include "hal_fake.h"
+#include "pirate_bay.h"
+
+static int passed = 0, failed = 0;
+#define CHECK(cond)                                                   \
+  do {                                                                \
+    if (cond) ++passed;                                               \
+    else { ++failed; printf("FAIL %s:%d: %s\n", __FILE__, __LINE__, #cond); } \
+  } while (0)
+
+struct BusFrame {
+  uint32_t t;
+  uint8_t addr, type;
+  std::vector<uint8_t> payload;
+};
+
+// Simulated boards: record every master frame, answer addressed ones.
+struct Boards {
+  std::vector<BusFrame> seen;
+  size_t pos = 0;
+  void serve() {
+    std::vector<uint8_t> &b = fake::bus_out;
+    while (pos + 6 <= b.size()) {
+      if (b[pos] != 0xA5) { ++pos; continue; }
+      uint8_t len = b[pos + 4];
+      if (pos + 6 + len > b.size()) break;
+      BusFrame f = {fake::now_ms, b[pos + 1], b[pos + 2],
+                    std::vector<uint8_t>(b.begin() + pos + 5, b.begin() + pos + 5 + len)};
+      uint8_t seq = b[pos + 3];
+      pos += 6 + len;
+      seen.push_back(f);
+      if (f.addr == 0xFF) continue;
+      std::vector<uint8_t> reply = {0xA5, f.addr, 0x81, seq, 18};
+      for (int i = 0; i < 9; ++i) { reply.push_back(f.addr); reply.push_back(i); }
+      reply.push_back(bus_crc8(reply.data() + 1, (uint8_t)(reply.size() - 1)));
+      fake::bus_in.insert(fake::bus_in.end(), reply.begin(), reply.end());
+    }
+  }
+  int count(uint8_t type, uint32_t since = 0, int addr = -1) const {
+    int n = 0;
+    for (const BusFrame &f : seen)
+      if (f.type == type && f.t >= since && (addr < 0 || f.addr == addr)) ++n;
+    return n;
+  }
+  const BusFrame *last_set(uint8_t addr) const {
+    for (size_t i = seen.size(); i-- > 0;)
+      if (seen[i].type == BUS_SET && seen[i].addr == addr) return &seen[i];
+    return 0;
+  }
+};
+
+static int16_t i16(const std::vector<uint8_t> &p, int i) { return (int16_t)(p[2 * i] | (p[2 * i + 1] << 8)); }
+
+struct Rig {
+  PirateBay bay;
+  Boards boards;
+  Rig() { fake::reset(); }
+  void send(const std::vector<uint8_t> &bytes) { fake::link_in.insert(fake::link_in.end(), bytes.begin(), bytes.end()); }
+  void run(uint32_t ms) {
+    for (uint32_t i = 0; i < ms; ++i) {
+      bay.step();
+      boards.serve();
+      bay.step();
+      ++fake::now_ms;
+    }
+  }
+  void handshake() {
+    send(ros_frame(0, {}));
+    run(2);
+    send(ros_frame(10, {1, 0, 0, 0, 0, 0, 0, 0}));
+    run(2);
+  }
+  void setpoints(const std::vector<int> &v) { send(ros_frame(TOPIC_SETPOINT_ID, int16_payload(v))); }
+  // Frames the firmware sent to the laptop, as (topic, payload).
+  std::vector<std::pair<uint16_t, std::vector<uint8_t> > > link_frames() const {
+    std::vector<std::pair<uint16_t, std::vector<uint8_t> > > out;
+    const std::vector<uint8_t> &b = fake::link_out;
+    for (size_t p = 0; p + 8 <= b.size();) {
+      uint16_t len = b[p + 2] | (b[p + 3] << 8);
+      if (b[p] != 0xFF || b[p + 1] != 0xFE || p + 8 + len > b.size()) { ++p; continue; }
+      out.push_back(std::make_pair((uint16_t)(b[p + 5] | (b[p + 6] << 8)),
+                                   std::vector<uint8_t>(b.begin() + p + 7, b.begin() + p + 7 + len)));
+      p += 8 + len;
+    }
+    return out;
+  }
+};
+
+static const std::vector<int> kSetpoints = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 50, 13};
+
+static void test_power_up_never_moves() {
+  Rig r;
+  r.run(2000);
+  CHECK(r.boards.count(BUS_SET) == 0);
+  CHECK(r.boards.count(BUS_STOP) >= 9 * 19);
+  r.setpoints(kSetpoints);  // before any handshake: ignored
+  r.run(300);
+  CHECK(r.boards.count(BUS_SET) == 0);
+}
+
+static void test_handshake_announces_topics_with_our_md5() {
+  Rig r;
+  r.send(ros_frame(0, {}));
+  r.run(2);
+  auto frames = r.link_frames();
+  int pubs = 0, subs = 0, time_requests = 0;
+  std::string all;
+  for (auto &f : frames) {
+    if (f.first == 0) ++pubs;
+    if (f.first == 1) ++subs;
+    if (f.first == 10 && f.second.empty()) ++time_requests;
+    all += std::string(f.second.begin(), f.second.end());
+  }
+  CHECK(pubs == 1 && subs == 3 && time_requests == 1);
+  CHECK(all.find(TOPIC_SETPOINT_MD5) != std::string::npos);
+  CHECK(all.find(TOPIC_SMALL_STATE_NAME) != std::string::npos);
+  CHECK(!r.bay.ros.configured());
+  r.setpoints(kSetpoints);  // before the time reply: not configured, ignored
+  r.run(150);
+  CHECK(r.boards.count(BUS_SET) == 0);
+  r.send(ros_frame(10, {1, 0, 0, 0, 0, 0, 0, 0}));
+  r.run(2);
+  CHECK(r.bay.ros.configured());
+  r.run(300);  // configured but no fresh setpoint yet
+  CHECK(r.boards.count(BUS_SET) == 0);
+}
+
+static void test_setpoints_reach_boards_with_wheel_signs() {
+  Rig r;
+  r.handshake();
+  r.setpoints(kSetpoints);
+  r.run(110);
+  const int8_t expect_sign[9] = {0, 0, 1, -1, 1, 1, -1, 1, 0};
+  for (int k = 0; k < 9; ++k) {
+    const BusFrame *f = r.boards.last_set(20 + k);
+    CHECK(f != 0);
+    if (!f) continue;
+    CHECK(i16(f->payload, 1) == kSetpoints[k]);               // setpoint0 = element k
+    if (expect_sign[k]) CHECK(i16(f->payload, 2) == expect_sign[k] * 50);
+  }
+  CHECK(i16(r.boards.last_set(20)->payload, 2) == 10);   // camera pan, element 9
+  CHECK(i16(r.boards.last_set(28)->payload, 2) == 13);   // rear LED, element 12
+  CHECK((uint16_t)i16(r.boards.last_set(22)->payload, 3) == 65535);  // no limit yet
+  int states = 0;
+  for (auto &f : r.link_frames())
+    if (f.first == TOPIC_SMALL_STATE_ID && f.second.size() == 19 && f.second[0] >= 20 && f.second[0] <= 28) ++states;
+  CHECK(states >= 9);
+}
+
+static void test_watchdog_stops_every_board() {
+  Rig r;
+  r.handshake();
+  r.setpoints(kSetpoints);
+  r.run(1);
+  uint32_t last = fake::now_ms;
+  r.run(400);
+  uint32_t stop_at = 0;
+  for (auto &f : r.boards.seen)
+    if (f.type == BUS_STOP && f.addr == 0xFF && f.t > last) { stop_at = f.t; break; }
+  CHECK(stop_at > last && stop_at - last <= 300);
+  CHECK(stop_at - last >= WATCHDOG_MS);
+  CHECK(r.boards.count(BUS_SET, stop_at) == 0);
+  CHECK(r.bay.bridge.counters.watchdog_trips == 1);
+  r.setpoints(kSetpoints);  // a fresh setpoint re-arms
+  r.run(110);
+  CHECK(r.boards.count(BUS_SET, stop_at + 1) >= 9);
+}
+
+static void test_corrupt_and_malformed_frames_change_nothing() {
+  Rig r;
+  r.handshake();
+  r.setpoints(kSetpoints);
+  r.run(5);
+  std::vector<uint8_t> bad = ros_frame(TOPIC_SETPOINT_ID, int16_payload({9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9}));
+  bad[10] ^= 0x04;
+  r.send(bad);
+  std::vector<int> short_array(kSetpoints.begin(), kSetpoints.end() - 1);
+  r.send(ros_frame(TOPIC_SETPOINT_ID, int16_payload(short_array)));   // 12 elements
+  r.send(ros_frame(TOPIC_CONTROL_ID, int16_payload({0, 0, 0, 0, 0, 0, 0, 0, 11, 0, 0, 0})));  // code 11
+  r.send(ros_frame(TOPIC_CONTROL_ID, int16_payload({0, 0, 0, 0, 0, 0, 0, 0, -1, 0, 0, 0})));
+  r.run(5);
+  for (int i = 0; i < SETPOINT_SIZE; ++i) CHECK(r.bay.bridge.setpoint(i) == kSetpoints[i]);
+  CHECK(r.bay.ros.counters.checksum_errors == 1);
+  CHECK(r.bay.bridge.counters.rejected == 3);
+  CHECK(r.bay.bridge.setpoint(200) == 0);  // out-of-range index reads as 0
+}
+
+static void test_modes_and_limits_forwarded() {
+  Rig r;
+  r.handshake();
+  r.send(ros_frame(TOPIC_CONTROL_ID, int16_payload({2, 2, 3, 3, 0, 2, 3, 3, 7, 2, 0, 1})));
+  r.send(ros_frame(TOPIC_LIMITS_ID, int16_payload({100, 200, 300, 400})));
+  r.setpoints(kSetpoints);
+  r.run(110);
+  const BusFrame *b23 = r.boards.last_set(23);
+  CHECK(b23 && b23->payload[0] == 3 && b23->payload[1] == 1 && i16(b23->payload, 3) == 200);
+  const BusFrame *b28 = r.boards.last_set(28);
+  CHECK(b28 && b28->payload[0] == 7);   // command code travels at index 8
+  CHECK(i16(r.boards.last_set(27)->payload, 3) == 400);
+}
+
+static void test_tx_stop_and_silence_disarm() {
+  Rig r;
+  r.handshake();
+  r.setpoints(kSetpoints);
+  r.run(50);
+  r.send(ros_frame(11, {}));
+  r.run(1);
+  CHECK(!r.bay.bridge.armed() && !r.bay.ros.configured());
+  r.handshake();
+  CHECK(r.bay.ros.configured());
+  r.run(3100);  // host silent beyond ROS_LINK_TIMEOUT_MS
+  CHECK(!r.bay.ros.configured());
+}
+
+int main() {
+  test_power_up_never_moves();
+  test_handshake_announces_topics_with_our_md5();
+  test_setpoints_reach_boards_with_wheel_signs();
+  test_watchdog_stops_every_board();
+  test_corrupt_and_malformed_frames_change_nothing();
+  test_modes_and_limits_forwarded();
+  test_tx_stop_and_silence_disarm();
+  printf("firmware unit: %d passed, %d failed\n", passed, failed);
+  return failed ? 1 : 0;
+}

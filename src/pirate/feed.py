@@ -1,0 +1,124 @@
+"""The robot's state as the sequencer sees it, and event-driven waiting on it.
+
+Advanced motion primitives publish, then wait for a guard on the joint
+angles (report 4.7.2). :meth:`RobotFeed.wait_until` wakes on every new
+state, on cancel, and a few times a second to check two clocks:
+
+- the primitive's timeout runs on *robot* time, the stamps of the states
+  themselves, so a simulated robot running faster than real time keeps the
+  report's 15 s;
+- the feedback watchdog runs on the *monotonic wall clock*: when states stop
+  arriving (a stopped simulated clock included) the wait ends with
+  :class:`FeedbackLost` within ``feedback_timeout`` plus one poll.
+
+Pure Python: no ROS; the manager pushes states in.
+"""
+import collections
+import math
+import threading
+import time
+
+#: One state of the robot in SI units. ``angles`` maps joint name -> rad,
+#: ``orientation`` is the rear part's roll (rad, Fig 4.7), ``odometry`` mm
+#: (NaN when the robot reports none), ``stamp`` robot time in s.
+RobotView = collections.namedtuple('RobotView', 'angles orientation odometry velocity stamp')
+
+POLL_S = 0.02
+
+
+class Interrupted(Exception):
+    """A wait ended without its guard: base of the reasons below."""
+
+
+class Cancelled(Interrupted):
+    """The operator cancelled the running goal."""
+
+
+class TimedOut(Interrupted):
+    """The guard was not reached within the primitive's timeout."""
+
+
+class FeedbackLost(Interrupted):
+    """The robot's state stopped arriving."""
+
+
+class RobotFeed(object):
+    """Newest :data:`RobotView`, cancel flag, and guard waiting."""
+
+    def __init__(self, feedback_timeout=0.3, clock=time.monotonic):
+        self.feedback_timeout = feedback_timeout
+        self._clock = clock
+        self._cond = threading.Condition()
+        self._latest = None
+        self._arrival = -math.inf
+        self._cancelled = False
+
+    def push(self, view):
+        """A new state from the robot (called by the subscriber)."""
+        with self._cond:
+            self._latest = view
+            self._arrival = self._clock()
+            self._cond.notify_all()
+
+    def latest(self):
+        """The newest state, or None before the first."""
+        with self._cond:
+            return self._latest
+
+    def fresh(self):
+        """True when a state arrived within the feedback timeout."""
+        with self._cond:
+            return self._clock() - self._arrival <= self.feedback_timeout
+
+    def since_last_state(self):
+        """Wall seconds since the newest state (inf before the first)."""
+        with self._cond:
+            return self._clock() - self._arrival
+
+    def cancel(self):
+        """Ask the running wait (and every later one) to end at once."""
+        with self._cond:
+            self._cancelled = True
+            self._cond.notify_all()
+
+    def clear_cancel(self):
+        """Ready for the next goal."""
+        with self._cond:
+            self._cancelled = False
+
+    @property
+    def cancelled(self):
+        """True once :meth:`cancel` was called for this goal."""
+        return self._cancelled
+
+    def check(self):
+        """Raise Cancelled or FeedbackLost if either holds now."""
+        with self._cond:
+            self._check_locked()
+
+    def _check_locked(self):
+        if self._cancelled:
+            raise Cancelled('cancelled by the operator')
+        silent = self._clock() - self._arrival
+        if silent > self.feedback_timeout:
+            raise FeedbackLost('no robot state for %.2f s (limit %.2f s)'
+                               % (silent, self.feedback_timeout))
+
+    def wait_until(self, guard, timeout, describe='guard'):
+        """Block until ``guard(view)`` holds; return that view.
+
+        Raises :class:`Cancelled`, :class:`FeedbackLost`, or :class:`TimedOut`
+        after ``timeout`` s of robot time without the guard.
+        """
+        with self._cond:
+            start = None
+            while True:
+                self._check_locked()
+                view = self._latest
+                if view is not None:
+                    if guard(view):
+                        return view
+                    start = view.stamp if start is None else start
+                    if view.stamp - start > timeout:
+                        raise TimedOut('%s not reached within %.1f s' % (describe, timeout))
+                self._cond.wait(POLL_S)

@@ -1,0 +1,110 @@
+"""Guard tables of the motion primitives, loaded from config (never in code).
+
+``config/guards_<mm>.yaml`` hold the per-diameter values of report Tables
+5.2 and 5.3, ``config/sequencer.yaml`` what is common (timeouts, regions of
+Table 5.4, drive settings). The manager loads them on the parameter server;
+tests load the files directly. Pure Python.
+"""
+import collections
+import os
+
+import yaml
+
+#: One bend's part of a clamp/unclamp: setpoint (counts) and guard (rad).
+BendGuard = collections.namedtuple('BendGuard', 'joint setpoint guard')
+#: A two-bend primitive: outer (alpha) and inner (beta) bend.
+PairGuard = collections.namedtuple('PairGuard', 'kind outer inner')
+#: A one-joint move: setpoint (counts) until the joint passes guard (rad).
+MoveGuard = collections.namedtuple('MoveGuard', 'kind setpoint guard')
+
+#: Which bends make each clamp (SPEC 2): (outer, inner).
+CLAMP_BENDS = {'front': ('bend_i', 'bend_ii'), 'rear': ('bend_iv', 'bend_iii')}
+
+CONFIG_DIR = os.path.join(os.path.dirname(__file__), '..', '..', 'config')
+
+
+class NoGuards(KeyError):
+    """The configuration has no guards for this primitive / diameter."""
+
+    def __str__(self):
+        return self.args[0]
+
+
+class Guards(object):
+    """The guards of one pipe diameter, plus the common sequencer settings."""
+
+    def __init__(self, table, common):
+        self.pipe_diameter = int(table['pipe_diameter'])
+        self._table = table
+        self.common = common
+
+    def pair(self, kind, part):
+        """:class:`PairGuard` of primitive ``kind`` (e.g. 'clamp') for ``part``."""
+        key = kind
+        if kind.startswith('unclamp') and kind != 'unclamp_partial':
+            key = 'unclamp_%s' % part
+        entry = self._table.get(key)
+        if entry is None:
+            raise NoGuards('no guards for %s in a %d mm pipe' % (key, self.pipe_diameter))
+        outer, inner = CLAMP_BENDS[part]
+        return PairGuard(key,
+                         BendGuard(outer, int(entry['outer']['setpoint']), float(entry['outer']['guard'])),
+                         BendGuard(inner, int(entry['inner']['setpoint']), float(entry['inner']['guard'])))
+
+    def move(self, kind):
+        """:class:`MoveGuard` of a front-module move ('move_front', ...)."""
+        entry = self._table.get(kind, self.common.get(kind))
+        if entry is None:
+            raise NoGuards('no guards for %s in a %d mm pipe' % (kind, self.pipe_diameter))
+        return MoveGuard(kind, int(entry['setpoint']), float(entry['guard']))
+
+    def has(self, kind):
+        """True when this diameter has guards for ``kind``."""
+        return kind in self._table
+
+    def region(self, name):
+        """(low, high) rad of orientation region 'straight' or 'nominal'."""
+        low, high = self.common['regions'][name]
+        return float(low), float(high)
+
+    def __getattr__(self, name):
+        try:
+            return self.common[name]
+        except KeyError:
+            raise AttributeError(name)
+
+
+def load_files(config_dir=CONFIG_DIR):
+    """Read every guards_<mm>.yaml and sequencer.yaml: ({mm: table}, common)."""
+    tables = {}
+    for name in sorted(os.listdir(config_dir)):
+        if name.startswith('guards_') and name.endswith('.yaml'):
+            with open(os.path.join(config_dir, name)) as stream:
+                table = yaml.safe_load(stream)
+            tables[int(table['pipe_diameter'])] = table
+    with open(os.path.join(config_dir, 'sequencer.yaml')) as stream:
+        common = yaml.safe_load(stream)
+    return tables, common
+
+
+class GuardBook(object):
+    """All diameters: ``book.for_diameter(90)`` or NoGuards with the reason.
+
+    ``tables`` maps any key (a param name such as ``pipe90``) to a table;
+    each table names its own ``pipe_diameter``.
+    """
+
+    def __init__(self, tables, common):
+        self._tables = {int(t['pipe_diameter']): t for t in tables.values()}
+        self.common = common
+
+    def diameters(self):
+        """Pipe diameters (mm) that have guards."""
+        return sorted(self._tables)
+
+    def for_diameter(self, mm):
+        """:class:`Guards` of pipe diameter ``mm``."""
+        if mm not in self._tables:
+            raise NoGuards('no guards for a %s mm pipe (configured: %s mm)'
+                           % (mm, ', '.join(str(d) for d in self.diameters())))
+        return Guards(self._tables[mm], self.common)

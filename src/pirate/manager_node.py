@@ -1,0 +1,187 @@
+"""pirate_manager: one process owning the command arrays (report 4.5, 5.6).
+
+Builds the one Setpoint / Control / Limit, the robot feed, the motion
+primitives, the Pirate Server behind an actionlib ActionServer, and the
+Mapper (operator panel), so every writer shares the same message state and a
+mode switch never resets a setpoint.
+
+Why ``actionlib.ActionServer`` and not SimpleActionServer: a
+SimpleActionServer accepts a new goal by preempting the running one; the
+report (4.6) wants a goal sent while one runs refused, not queued nor
+preempting. The server is created with ``auto_start=False`` and started
+when everything is wired.
+
+Params (private): ``~guards`` ({mm: table}, config/guards_*.yaml),
+``~sequencer`` (config/sequencer.yaml), ``~panel`` (bool, compose the
+Mapper; its channel map is the rest of the private namespace).
+"""
+import signal
+import threading
+import time
+
+import actionlib
+import rospy
+
+from pirate import commands, names
+from pirate.feed import RobotFeed, RobotView
+from pirate.guards import GuardBook
+from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, PirateGoal,
+                        PirateResult, RobotState, SetpointArray)
+from pirate.primitives import MotionPrimitives
+from pirate.server import ABORTED, PREEMPTED, SUCCEEDED, PirateServer
+from pirate.srv import ServerStatus, ServerStatusResponse
+
+SHUTDOWN_FLUSH_S = 0.3
+
+
+class PabClient(object):
+    """The Mapper's handle on the Pirate Server (report 4.6: it is the client)."""
+
+    def __init__(self, server):
+        self._server = server
+        self._client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
+
+    def send_goal(self, name_code, pipe_diameter, option=PirateGoal.NONE):
+        """Send a goal; (False, reason) when the server would refuse it."""
+        goal = PirateGoal(name=name_code, pipe_diameter=pipe_diameter, option=option)
+        if self._server.active:
+            return False, 'a PAB is running (%s)' % self._server.active
+        self._client.send_goal(goal, done_cb=self._done)
+        return True, ''
+
+    @staticmethod
+    def _done(status, result):
+        rospy.loginfo('PAB ended: %s', result.message if result else 'no result')
+
+    def cancel(self):
+        """Cancel the running goal."""
+        self._client.cancel_all_goals()
+        self._server.cancel()
+
+    def is_active(self):
+        """True while a PAB runs."""
+        return bool(self._server.active)
+
+
+class PirateManager(object):
+    """Everything the pirate_manager process owns."""
+
+    def __init__(self):
+        log = rospy.logwarn
+        self.control = commands.Control(
+            rospy.Publisher(names.CONTROL_TOPIC, ControlArray, queue_size=10, latch=True),
+            lambda data: ControlArray(data=data), log=log)
+        self.setpoint = commands.Setpoint(
+            rospy.Publisher(names.SETPOINT_TOPIC, SetpointArray, queue_size=1),
+            lambda data: SetpointArray(data=data), self.control, log=log)
+        self.limit = commands.Limit(
+            rospy.Publisher(names.LIMITS_TOPIC, LimitArray, queue_size=1),
+            lambda data: LimitArray(data=data), log=log)
+        book = GuardBook(rospy.get_param('~guards'), rospy.get_param('~sequencer'))
+        self.feed = RobotFeed(book.common['feedback_timeout'])
+        self.prims = MotionPrimitives(self.setpoint, self.control, self.limit, self.feed)
+        self.server = PirateServer(self.prims, self.feed, book, self._start_robot,
+                                   feedback=self._publish_feedback, log=rospy.loginfo)
+        self._goal_lock = threading.Lock()
+        self._current = None
+        self._pending = threading.Condition()
+        self._queue = []
+        self._action = actionlib.ActionServer(names.PIRATE_ACTION, PirateAction, self._on_goal,
+                                              self._on_cancel, auto_start=False)
+        rospy.Service(names.SERVER_STATUS_SERVICE, ServerStatus, self._status)
+        rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state, queue_size=5)
+        rospy.Timer(rospy.Duration(0.1), self._tick)
+        self.panel = self._compose_panel()
+        threading.Thread(target=self._worker, name='pab_worker', daemon=True).start()
+        self._action.start()
+        rospy.loginfo('pirate_manager ready: guards for %s mm; nothing moves until Play or a PAB goal',
+                      ', '.join(str(d) for d in book.diameters()))
+
+    def _compose_panel(self):
+        if not rospy.get_param('~panel', True):
+            return None
+        from pirate.panel.mapper_ros import MapperRos
+        return MapperRos(self.setpoint, self.control, self.limit, PabClient(self.server),
+                         publish_arrays=False)
+
+    # --- robot side -------------------------------------------------------
+    def _on_state(self, msg):
+        if msg.stale:
+            return      # old angles are no feedback: let the watchdog see silence
+        self.feed.push(RobotView(dict(zip(msg.name, msg.position)), msg.orientation,
+                                 msg.odometry, msg.velocity, msg.header.stamp.to_sec()))
+
+    def _tick(self, _event):
+        self.setpoint.tick()
+        self.limit.tick()
+
+    def _start_robot(self):
+        """A goal is a request to move: PLAY and start the 10 Hz arrays."""
+        self.control.command('play')
+        self.setpoint.enabled = self.limit.enabled = True
+
+    # --- action side ------------------------------------------------------
+    def _on_goal(self, handle):
+        goal = handle.get_goal()
+        reason = self.server.reserve(goal)
+        if reason:
+            rospy.logwarn('goal refused: %s', reason)
+            handle.set_rejected(PirateResult(success=False, message=reason), reason)
+            return
+        handle.set_accepted('accepted')
+        with self._pending:
+            self._current = handle
+            self._queue.append(handle)
+            self._pending.notify()
+
+    def _on_cancel(self, handle):
+        with self._pending:
+            if self._current is not None and handle.get_goal_id().id == self._current.get_goal_id().id:
+                self.server.cancel()
+
+    def _worker(self):
+        while not rospy.is_shutdown():
+            with self._pending:
+                while not self._queue:
+                    self._pending.wait(0.5)
+                    if rospy.is_shutdown():
+                        return
+                handle = self._queue.pop(0)
+            outcome = self.server.run(handle.get_goal())
+            result = PirateResult(success=outcome.status == SUCCEEDED, message=outcome.message)
+            with self._pending:
+                self._current = None
+            if outcome.status == SUCCEEDED:
+                handle.set_succeeded(result, outcome.message)
+            elif outcome.status == PREEMPTED:
+                handle.set_canceled(result, outcome.message)
+            else:
+                assert outcome.status == ABORTED
+                handle.set_aborted(result, outcome.message)
+
+    def _publish_feedback(self, fb):
+        handle = self._current
+        if handle is not None:
+            handle.publish_feedback(PirateFeedback(server_state=fb.server_state, pab_state=fb.pab_state,
+                                                   primitive=fb.primitive, guard=fb.guard))
+
+    def _status(self, _req):
+        return ServerStatusResponse(active=bool(self.server.active), cancelled=self.server.cancelled,
+                                    server_state=self.server.state, pab_state=self.server.pab_state,
+                                    primitive=self.server.primitive)
+
+    # --- shutdown ---------------------------------------------------------
+    def shutdown(self, *_signal):
+        """SIGINT/SIGTERM: cancel, publish the safe hold, let it reach the wire."""
+        self.server.cancel()
+        self.prims.safe_hold()
+        time.sleep(SHUTDOWN_FLUSH_S)   # give the publisher thread time to send it
+        rospy.signal_shutdown('pirate_manager stopped: safe hold sent')
+
+
+def main():
+    rospy.init_node('pirate_manager', disable_signals=True)
+    manager = PirateManager()
+    signal.signal(signal.SIGINT, manager.shutdown)
+    signal.signal(signal.SIGTERM, manager.shutdown)
+    rospy.spin()

@@ -1,0 +1,21 @@
+"""The PABs the Pirate Server can run, one table row each.
+
+Adding a PAB: write its class (a :class:`pirate.pabs.base.Pab`) and add a
+row here. The codes are the goal's ``name`` constants of Pirate.action
+(SPEC 6); a unit test checks they match the generated message.
+"""
+from pirate.pabs.clamp_straight import ClampStraight
+from pirate.pabs.drive import Drive
+from pirate.pabs.home import Home
+
+CLAMP_STRAIGHT, CLAMP_SIDEWAYS, T_JOINT, MITRE_BEND, DRIVE, HOME = range(6)
+
+#: goal code -> (name, PAB class or None when not built yet)
+PABS = {
+    CLAMP_STRAIGHT: ('CLAMP_STRAIGHT', ClampStraight),
+    CLAMP_SIDEWAYS: ('CLAMP_SIDEWAYS', None),
+    T_JOINT: ('T_JOINT', None),
+    MITRE_BEND: ('MITRE_BEND', None),
+    DRIVE: ('DRIVE', Drive),
+    HOME: ('HOME', Home),
+}

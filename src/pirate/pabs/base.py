@@ -1,0 +1,116 @@
+"""PAB base class and a state machine whose transitions are data.
+
+A PAB (report 4.7.4) is a class with a :class:`StateMachine` (states and
+guarded transitions, printable as a table like the report's Table D.1), an
+action per state (motion primitives) and a ``facts`` function that reads the
+robot after each action. :meth:`Pab.run` is the one loop that drives them.
+Pure Python.
+"""
+import collections
+
+END = 'END'
+
+#: A named predicate over a PAB's facts; the name is what the table prints.
+Guard = collections.namedtuple('Guard', 'text test')
+Transition = collections.namedtuple('Transition', 'source target guard')
+
+ALWAYS = Guard('-', lambda facts: True)
+
+
+class PabFailed(Exception):
+    """A PAB cannot go on; the message says why (goal aborted)."""
+
+
+class StateMachine(object):
+    """States and guarded transitions, checked for consistency on creation."""
+
+    def __init__(self, initial, transitions):
+        self.initial = initial
+        self.transitions = tuple(transitions)
+        self.states = tuple(collections.OrderedDict.fromkeys(
+            [initial] + [t.source for t in self.transitions] + [t.target for t in self.transitions]))
+        self.assert_consistent()
+
+    def assert_consistent(self):
+        """Every state but END has an exit and is reachable from the start."""
+        sources = {t.source for t in self.transitions}
+        for state in self.states:
+            if state != END and state not in sources:
+                raise ValueError('state %s has no transition out' % state)
+        reached, frontier = {self.initial}, [self.initial]
+        while frontier:
+            state = frontier.pop()
+            for t in self.transitions:
+                if t.source == state and t.target not in reached:
+                    reached.add(t.target)
+                    frontier.append(t.target)
+        unreachable = set(self.states) - reached
+        if unreachable:
+            raise ValueError('states unreachable from %s: %s' % (self.initial, sorted(unreachable)))
+
+    def exits(self, state):
+        """Transitions out of ``state``."""
+        return [t for t in self.transitions if t.source == state]
+
+    def next(self, state, facts):
+        """The one target whose guard holds; PabFailed if none or several."""
+        fired = [t for t in self.exits(state) if t.guard.test(facts)]
+        if len(fired) != 1:
+            raise PabFailed('%s: %s transition for %s' % (
+                state, 'no' if not fired else 'more than one', _describe(facts)))
+        return fired[0].target
+
+    def table(self):
+        """The transitions as a text table (state, next state, guard)."""
+        rows = [('state', 'next state', 'guard')] + [
+            (t.source, t.target, t.guard.text) for t in self.transitions]
+        widths = [max(len(r[i]) for r in rows) for i in range(3)]
+        return '\n'.join('  '.join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in rows)
+
+
+def _describe(facts):
+    if hasattr(facts, '_asdict'):
+        return ', '.join('%s=%s' % kv for kv in facts._asdict().items())
+    return repr(facts)
+
+
+class Pab(object):
+    """Base of every PAB: subclasses set ``name``, ``machine``, ``actions``."""
+
+    name = 'PAB'
+    machine = None
+    #: True when the PAB needs the robot clamped to start (Fig 4.2: Drive).
+    requires_clamped = False
+    #: Server state after success: 'clamped' or 'unclamped' (Fig 4.2).
+    leaves = 'clamped'
+
+    def check(self, goal, view, guards):
+        """Reason the goal cannot run, or None (called before accepting)."""
+        return None
+
+    def facts(self, ctx):
+        """What the guards of the transitions look at, read after an action."""
+        return None
+
+    def actions(self):
+        """Map state -> callable(ctx)."""
+        raise NotImplementedError
+
+    def run(self, ctx):
+        """Drive the state machine to END; return a message for the result."""
+        actions = self.actions()
+        state = self.machine.initial
+        limit = ctx.guards.max_primitives
+        for _ in range(limit):
+            ctx.feed.check()
+            ctx.report(state)
+            actions[state](ctx)
+            state = self.machine.next(state, self.facts(ctx))
+            if state == END:
+                ctx.report(END)
+                return self.summary(ctx)
+        raise PabFailed('%s did not finish within %d states' % (self.name, limit))
+
+    def summary(self, ctx):
+        """Result message on success."""
+        return '%s done' % self.name

@@ -1,0 +1,207 @@
+"""Clamp Straight (report 4.7.4.1, 5.10, Table D.1; SPEC 8).
+
+The transition table below is Table D.1 reconciled with the step lists the
+report observed (Tables 6.1-6.3), because the extracted Table D.1 is damaged
+and its "aligned" cannot hold where the steps need it to (after a rotation
+limited to 0.7 rad). Where it differs, the step lists win:
+
+- "partial" clamps are the custom clamps of Table 5.3; they are used while
+  the PAB started non-nominal and the rear part is not yet straight;
+- the front is lifted in up to two stages (0.105 rad, then 0.3 rad) when the
+  start is non-nominal, once (0.4 rad) otherwise (Table 5.3);
+- END needs both parts clamped with the full guards, the rear straight and
+  the rotation aligned, so the front (no IMU) is straight too;
+- rotate rear uses eq 5.2 as an increment on the current rotation (the
+  encoder is absolute, so the report's sequence only converges that way);
+  rotate front uses eq 5.1, or aligns when the rear is already straight
+  ("rotate front (to 0)" in Tables 6.2 and 6.3).
+
+Facts are read after every action: clamp states are remembered from the
+primitives that succeeded; orientation and rotation come from the robot.
+"""
+import collections
+import math
+
+from pirate import safety
+from pirate.pabs.base import ALWAYS, END, Guard, Pab, StateMachine, Transition
+
+CHANGE_MODES = 'change control modes'
+MOVING_FRONT = 'moving front'
+CLAMPING_REAR = 'clamping rear'
+CLAMPING_FRONT = 'clamping front'
+UNCLAMPING_REAR = 'unclamping rear partial'
+UNCLAMPING_FRONT = 'unclamping front partial'
+ROTATING_REAR = 'rotating rear'
+ROTATING_FRONT = 'rotating front'
+CLAMPING_REAR_CUSTOM = 'clamping rear custom'
+CLAMPING_FRONT_CUSTOM = 'clamping front custom'
+
+NONE, CUSTOM, FULL = 'none', 'custom', 'full'
+
+#: What the guards look at. front/rear: NONE, CUSTOM or FULL clamp;
+#: lift: 0 down, 1 first non-nominal lift, 2 lifted for a full front clamp.
+Facts = collections.namedtuple('Facts', 'nominal_start straight aligned front rear lift')
+
+
+def _g(text, test):
+    return Guard(text, test)
+
+
+DONE = _g('front full AND rear full AND straight AND aligned',
+          lambda f: f.front == FULL and f.rear == FULL and f.straight and f.aligned)
+CUSTOM_NEEDED = lambda f: not f.nominal_start and not f.straight  # noqa: E731
+
+TRANSITIONS = (
+    Transition(CHANGE_MODES, END, DONE),
+    Transition(CHANGE_MODES, MOVING_FRONT, _g('NOT done AND nominal start',
+                                              lambda f: not DONE.test(f) and f.nominal_start)),
+    Transition(CHANGE_MODES, CLAMPING_REAR_CUSTOM, _g('NOT done AND non-nominal start',
+                                                      lambda f: not DONE.test(f) and not f.nominal_start)),
+    Transition(MOVING_FRONT, CLAMPING_REAR, _g('rear not clamped', lambda f: f.rear == NONE)),
+    Transition(MOVING_FRONT, CLAMPING_FRONT_CUSTOM, _g('rear clamped AND front not clamped',
+                                                       lambda f: f.rear != NONE and f.front == NONE)),
+    Transition(MOVING_FRONT, UNCLAMPING_REAR, _g('rear clamped AND front clamped',
+                                                 lambda f: f.rear != NONE and f.front != NONE)),
+    Transition(CLAMPING_REAR, CLAMPING_FRONT, _g('front not clamped', lambda f: f.front == NONE)),
+    Transition(CLAMPING_REAR, UNCLAMPING_REAR, _g('front clamped AND NOT straight',
+                                                  lambda f: f.front != NONE and not f.straight)),
+    Transition(CLAMPING_REAR, UNCLAMPING_FRONT,
+               _g('front clamped AND straight AND (front custom OR NOT aligned)',
+                  lambda f: f.front != NONE and f.straight and (f.front == CUSTOM or not f.aligned))),
+    Transition(CLAMPING_REAR, END, DONE),
+    Transition(CLAMPING_FRONT, CLAMPING_REAR, _g('rear not clamped', lambda f: f.rear == NONE)),
+    Transition(CLAMPING_FRONT, UNCLAMPING_REAR, _g('rear clamped AND (NOT straight OR rear custom)',
+                                                  lambda f: f.rear != NONE and (not f.straight or f.rear == CUSTOM))),
+    Transition(CLAMPING_FRONT, UNCLAMPING_FRONT, _g('rear full AND straight AND NOT aligned',
+                                                    lambda f: f.rear == FULL and f.straight and not f.aligned)),
+    Transition(CLAMPING_FRONT, END, DONE),
+    Transition(UNCLAMPING_REAR, ROTATING_REAR, ALWAYS),
+    Transition(ROTATING_REAR, CLAMPING_REAR_CUSTOM, _g('non-nominal start AND NOT straight', CUSTOM_NEEDED)),
+    Transition(ROTATING_REAR, CLAMPING_REAR, _g('nominal start OR straight', lambda f: not CUSTOM_NEEDED(f))),
+    Transition(UNCLAMPING_FRONT, ROTATING_FRONT, ALWAYS),
+    Transition(ROTATING_FRONT, MOVING_FRONT, _g('front not lifted', lambda f: f.lift == 0)),
+    Transition(ROTATING_FRONT, CLAMPING_FRONT_CUSTOM, _g('front lifted AND non-nominal start AND NOT straight',
+                                                         lambda f: f.lift > 0 and CUSTOM_NEEDED(f))),
+    Transition(ROTATING_FRONT, CLAMPING_FRONT, _g('front lifted AND (nominal start OR straight)',
+                                                  lambda f: f.lift > 0 and not CUSTOM_NEEDED(f))),
+    Transition(CLAMPING_FRONT_CUSTOM, MOVING_FRONT, _g('front not fully lifted', lambda f: f.lift < 2)),
+    Transition(CLAMPING_FRONT_CUSTOM, UNCLAMPING_REAR, _g('front fully lifted', lambda f: f.lift == 2)),
+    Transition(CLAMPING_REAR_CUSTOM, ROTATING_FRONT, _g('front not clamped', lambda f: f.front == NONE)),
+    Transition(CLAMPING_REAR_CUSTOM, UNCLAMPING_FRONT, _g('front clamped', lambda f: f.front != NONE)),
+)
+
+MACHINE = StateMachine(CHANGE_MODES, TRANSITIONS)
+
+
+def in_region(orientation, region):
+    """True when ``orientation`` (rad) lies in the (low, high) ``region``."""
+    return region[0] <= orientation <= region[1]
+
+
+def limit_rotation(rad):
+    """Saturate a rotation target at the safety limit (report 5.10.1)."""
+    top = safety.ROTATION_MAX_RAD
+    return max(-top, min(top, rad))
+
+
+class ClampStraight(Pab):
+    """Clamp upright (pi/2) from any start the guards allow."""
+
+    name = 'Clamp Straight'
+    machine = MACHINE
+    leaves = 'clamped'
+
+    def __init__(self):
+        self.nominal_start = True
+        self.clamp = {'front': NONE, 'rear': NONE}
+        self.lift = 0
+        self.front_custom_done = False
+
+    def check(self, goal, view, guards):
+        nominal = in_region(view.orientation, guards.region('nominal'))
+        if not nominal and not guards.has('clamp_rear_custom'):
+            return ('orientation %.2f rad is non-nominal and the %d mm guards have no custom '
+                    'clamp (report 5.10: non-nominal only in 90 mm)' % (view.orientation, guards.pipe_diameter))
+        return None
+
+    def actions(self):
+        return {
+            CHANGE_MODES: self._change_modes,
+            MOVING_FRONT: self._move_front,
+            CLAMPING_REAR: lambda ctx: self._clamp(ctx, 'rear', 'clamp', FULL),
+            CLAMPING_FRONT: lambda ctx: self._clamp(ctx, 'front', 'clamp', FULL),
+            CLAMPING_REAR_CUSTOM: lambda ctx: self._clamp(ctx, 'rear', 'clamp_rear_custom', CUSTOM),
+            CLAMPING_FRONT_CUSTOM: self._clamp_front_custom,
+            UNCLAMPING_REAR: lambda ctx: self._unclamp(ctx, 'rear'),
+            UNCLAMPING_FRONT: lambda ctx: self._unclamp(ctx, 'front'),
+            ROTATING_REAR: self._rotate_rear,
+            ROTATING_FRONT: self._rotate_front,
+        }
+
+    def facts(self, ctx):
+        view = ctx.feed.latest()
+        return Facts(nominal_start=self.nominal_start,
+                     straight=in_region(view.orientation, ctx.guards.region('straight')),
+                     aligned=abs(view.angles['rotation']) <= ctx.guards.align_tolerance,
+                     front=self.clamp['front'], rear=self.clamp['rear'], lift=self.lift)
+
+    # --- actions ----------------------------------------------------------
+    def _change_modes(self, ctx):
+        """Bends to torque, rotation to position (report 5.10), and read the start."""
+        view = ctx.feed.latest()
+        self.nominal_start = in_region(view.orientation, ctx.guards.region('nominal'))
+        for part in ('front', 'rear'):
+            pair = ctx.guards.pair('clamp', part)
+            if (view.angles[pair.outer.joint] <= pair.outer.guard
+                    and view.angles[pair.inner.joint] >= pair.inner.guard):
+                self.clamp[part] = FULL
+        if view.angles['front_tilt'] >= ctx.guards.move('move_front').guard:
+            self.lift = 2
+        for bend in ('bend_i', 'bend_ii', 'bend_iii', 'bend_iv'):
+            ctx.prims.change_control_mode(bend, 'torque')
+        ctx.prims.change_control_mode('rotation', 'position')
+        ctx.prims.change_control_mode('front_tilt', 'pwm')
+
+    def _move_front(self, ctx):
+        if self.nominal_start:
+            ctx.prims.move_front('move_front')
+            self.lift = 2
+        elif self.lift == 0:
+            ctx.prims.move_front('move_front_first')
+            self.lift = 1
+        else:
+            ctx.prims.move_front('move_front_later')
+            self.lift = 2
+
+    def _clamp(self, ctx, part, kind, result):
+        ctx.prims.clamp(part, kind)
+        self.clamp[part] = result
+
+    def _clamp_front_custom(self, ctx):
+        kind = 'clamp_front_custom' if self.front_custom_done else 'clamp_front_custom_first'
+        self._clamp(ctx, 'front', kind, CUSTOM)
+        self.front_custom_done = True
+
+    def _unclamp(self, ctx, part):
+        ctx.prims.unclamp(part, partial=True)
+        self.clamp[part] = NONE
+
+    def _rotate_rear(self, ctx):
+        """Eq 5.2 as an increment: turn the free rear part to upright."""
+        view = ctx.feed.latest()
+        target = view.angles['rotation'] + (math.pi / 2 - view.orientation)
+        ctx.prims.rotate(limit_rotation(target), name='rotate rear')
+
+    def _rotate_front(self, ctx):
+        """Eq 5.1: turn the free front part upright, or align if the rear is."""
+        view = ctx.feed.latest()
+        if in_region(view.orientation, ctx.guards.region('straight')):
+            ctx.prims.rotate(0.0, name='rotate front (align)')
+        else:
+            ctx.prims.rotate(limit_rotation(view.orientation - math.pi / 2), name='rotate front')
+
+    def summary(self, ctx):
+        view = ctx.feed.latest()
+        return ('clamped straight at %.3f rad, rotation %.3f rad, %d motion primitives'
+                % (view.orientation, view.angles['rotation'], len(ctx.prims.executed)))
+

@@ -1,0 +1,93 @@
+"""Drive (report 4.7.4.2.2, 5.12): drive a signed distance while clamped.
+
+By odometry, as the report recommends: drive at the goal's speed until the
+remaining distance is what the robot covers in ``creep_lead`` s, creep the
+rest at ``creep_speed`` (so the latency of state and setpoints, 0.1 s each,
+costs millimetres, not centimetres), stop ``stop_lead`` s early and wait
+until the wheels stand still. Only when the robot
+reports no odometry (NaN) does it fall back to the report's time-based drive,
+eq 5.3: x = (v0 + vf) t / 2 with v0 = 0, so t = 2 x / vf.
+"""
+import math
+
+from pirate import safety
+from pirate.pabs.base import ALWAYS, END, Pab, PabFailed, StateMachine, Transition
+
+DRIVING = 'driving'
+STOPPING = 'stopping'
+
+MACHINE = StateMachine(DRIVING, (
+    Transition(DRIVING, STOPPING, ALWAYS),
+    Transition(STOPPING, END, ALWAYS),
+))
+
+STANDSTILL_MM_S = 1.0
+
+
+class Drive(Pab):
+    """Drive ``goal.distance`` mm (signed) at ``goal.speed`` mm/s."""
+
+    name = 'Drive'
+    machine = MACHINE
+    requires_clamped = True
+    leaves = 'clamped'
+
+    def __init__(self):
+        self.start_mm = None
+        self.driven = None
+        self.method = 'odometry'
+
+    def check(self, goal, view, guards):
+        speed = goal.speed or guards.drive['default_speed']
+        if not safety.drive_speed_ok(speed) or speed <= 0:
+            return 'drive speed %.1f mm/s outside (0, %.0f] mm/s' % (speed, safety.DRIVE_MAX_MM_S)
+        limit = guards.drive['max_distance']
+        if not math.isfinite(goal.distance) or goal.distance == 0 or abs(goal.distance) > limit:
+            return 'drive distance %r mm outside [-%.0f, %.0f] mm and not 0' % (goal.distance, limit, limit)
+        return None
+
+    def actions(self):
+        return {DRIVING: self._drive, STOPPING: self._stop}
+
+    def _drive(self, ctx):
+        distance = ctx.goal.distance
+        speed = math.copysign(ctx.goal.speed or ctx.guards.drive['default_speed'], distance)
+        view = ctx.feed.latest()
+        self.start_mm = view.odometry
+        timeout = 2.0 * abs(distance / speed) + ctx.guards.primitive_timeout
+        ctx.prims.drive_at_velocity(speed)
+        if math.isnan(view.odometry):
+            self.method = 'time (eq 5.3)'
+            end = view.stamp + 2.0 * abs(distance) / abs(speed)
+            ctx.prims.executed.append('drive by time')
+            ctx.feed.wait_until(lambda v: v.stamp >= end, timeout, 'drive by time')
+            return
+        settings = ctx.guards.drive
+        creep = math.copysign(min(settings['creep_speed'], abs(speed)), distance)
+        ctx.prims.executed.append('drive')
+        ctx.report(DRIVING, 'odometry %+.0f mm' % distance)
+        self._drive_until(ctx, abs(distance) - abs(speed) * settings['creep_lead'], timeout)
+        ctx.prims.drive_at_velocity(creep)
+        self._drive_until(ctx, abs(distance) - abs(creep) * settings['stop_lead'], timeout)
+
+    def _drive_until(self, ctx, covered_mm, timeout):
+        """Wait until the odometry has covered ``covered_mm`` from the start."""
+        ctx.feed.wait_until(lambda v: abs(v.odometry - self.start_mm) >= covered_mm, timeout,
+                            'odometry covers %.1f mm' % covered_mm)
+
+    def _stop(self, ctx):
+        ctx.prims.drive_at_velocity(0.0)
+        ctx.feed.wait_until(lambda v: abs(v.velocity) < STANDSTILL_MM_S,
+                            ctx.guards.primitive_timeout, 'wheels standing still')
+        if self.method == 'odometry':
+            driven = ctx.feed.latest().odometry - self.start_mm
+            error = abs(driven - ctx.goal.distance)
+            if error > ctx.guards.drive['tolerance']:
+                raise PabFailed('drove %.1f mm of %.1f mm (tolerance %.0f mm)'
+                                % (driven, ctx.goal.distance, ctx.guards.drive['tolerance']))
+            self.driven = driven
+
+    def summary(self, ctx):
+        if self.method == 'odometry':
+            return 'drove %.1f mm by odometry (asked %.1f mm)' % (self.driven, ctx.goal.distance)
+        return 'drove %.1f mm by time, eq 5.3 (no odometry)' % ctx.goal.distance

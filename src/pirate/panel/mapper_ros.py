@@ -1,0 +1,76 @@
+"""ROS edge of the Mapper, composed inside the pirate_manager node.
+
+Construct after ``rospy.init_node`` in the node that owns the shared
+Setpoint / Control / Limit objects (report 4.5: one instance of each)::
+
+    panel = MapperRos(setpoint, control, limit, pab_client)
+
+- reads the panel map from the node's private params (``~channels`` etc.,
+  loaded from ``config/nanokontrol2.yaml`` by Manager.launch) unless a
+  ``config`` dict/PanelConfig is given;
+- subscribes MidiInput on ``names.MIDI_INPUT_TOPIC`` (queue 100: under a
+  flood rospy drops the oldest events, so a Stop press is never stuck
+  behind thousands of slider values);
+- publishes MidiOutput on ``names.MIDI_OUTPUT_TOPIC``; every LED is sent
+  again when a panel driver or virtual panel connects;
+- runs a 10 Hz timer that calls ``mapper.tick()`` (LEDs follow modes a PAB
+  changed) and, unless ``publish_arrays=False``, ``setpoint.tick()`` and
+  ``limit.tick()`` (the 10 Hz publishing of report 4.6; pass False if the
+  node ticks them itself).
+"""
+import time
+
+import rospy
+
+from pirate import names
+from pirate.mapper import Mapper
+from pirate.msg import MidiInput, MidiOutput
+
+TICK_PERIOD_S = 0.1
+
+
+class _LedResync(rospy.SubscribeListener):
+    """Send every LED to a panel that has just subscribed."""
+
+    def __init__(self, owner):
+        super(_LedResync, self).__init__()
+        self._owner = owner
+
+    def peer_subscribe(self, topic_name, topic_publish, peer_publish):
+        if self._owner.mapper is not None:
+            self._owner.mapper.refresh_leds(force=True)
+
+
+class MapperRos(object):
+    """Wire a :class:`pirate.mapper.Mapper` to the panel topics and a 10 Hz timer."""
+
+    def __init__(self, setpoint, control, limit, pab_client, config=None, publish_arrays=True):
+        self.mapper = None
+        self._setpoint, self._limit = setpoint, limit
+        self._publish_arrays = publish_arrays
+        self._led_pub = rospy.Publisher(names.MIDI_OUTPUT_TOPIC, MidiOutput, queue_size=100,
+                                        subscriber_listener=_LedResync(self))
+        if config is None:
+            config = rospy.get_param('~')
+        self.mapper = Mapper(config, setpoint, control, limit, pab_client,
+                             self._publish_led, rospy.logwarn, time.monotonic)
+        self._sub = rospy.Subscriber(names.MIDI_INPUT_TOPIC, MidiInput, self._on_midi,
+                                     queue_size=100)
+        self._timer = rospy.Timer(rospy.Duration(TICK_PERIOD_S), self._tick)
+
+    def _publish_led(self, button, on):
+        self._led_pub.publish(MidiOutput(button=button, value=on))
+
+    def _on_midi(self, msg):
+        self.mapper.handle(msg.channel, msg.value)
+
+    def _tick(self, _event):
+        self.mapper.tick()
+        if self._publish_arrays:
+            self._setpoint.tick()
+            self._limit.tick()
+
+    def shutdown(self):
+        """Stop the timer and the subscription (node shutdown, tests)."""
+        self._timer.shutdown()
+        self._sub.unregister()

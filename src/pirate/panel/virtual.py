@@ -1,0 +1,219 @@
+"""An on-screen nanoKONTROL2: layout, hit-testing, state and drawing.
+
+It sends the same (channel, value) events as the hardware panel in its
+default CC mode (SPEC 5) and shows the LEDs the Mapper lights, so the stack
+can be driven on any laptop. No ROS here: :class:`VirtualPanel` turns pygame
+events into (channel, value) pairs and draws its state on a surface; the
+node (pirate.panel.virtual_node) moves those to and from the topics. Tests
+synthesise pygame events and read pixels, headless (SDL_VIDEODRIVER=dummy).
+
+Keyboard (strip = the selected channel strip, keys 1-8 select it):
+  Up/Down slider +-4, PgUp/PgDn slider +-16, Left/Right knob -+4,
+  s / m / r the strip's S / M / R button, p Play, space Stop, w Rewind,
+  f fast forward, o Record, e marker Set (hold it), , and . Track < and >,
+  c Cycle, [ and ] marker < and >.
+Mouse: click buttons; drag sliders and knobs (vertically); wheel over a
+slider or knob nudges it.
+"""
+import collections
+import math
+import os
+
+os.environ.setdefault('PYGAME_HIDE_SUPPORT_PROMPT', '1')
+import pygame  # noqa: E402
+
+STRIPS = 8
+SLIDER_BASE, KNOB_BASE, S_BASE, M_BASE, R_BASE = 0, 16, 32, 48, 64
+MIDI_MAX = 127
+PRESSED, RELEASED = 127, 0
+
+#: Transport and track buttons: channel -> (label, column, row, key).
+TRANSPORT = collections.OrderedDict([
+    (58, ('TRACK <', 0, 0, pygame.K_COMMA)), (59, ('TRACK >', 1, 0, pygame.K_PERIOD)),
+    (46, ('CYCLE', 0, 1, pygame.K_c)), (60, ('SET', 2, 1, pygame.K_e)),
+    (61, ('MARKER <', 3, 1, pygame.K_LEFTBRACKET)), (62, ('MARKER >', 4, 1, pygame.K_RIGHTBRACKET)),
+    (43, ('<< REW', 0, 2, pygame.K_w)), (44, ('FF >>', 1, 2, pygame.K_f)),
+    (42, ('STOP', 2, 2, pygame.K_SPACE)), (41, ('PLAY', 3, 2, pygame.K_p)),
+    (45, ('REC', 4, 2, pygame.K_o)),
+])
+STRIP_KEYS = {pygame.K_s: S_BASE, pygame.K_m: M_BASE, pygame.K_r: R_BASE}
+#: Channel of the operation-mode button: its LED on means PAB mode (SPEC 5).
+OPERATION_MODE_BUTTON, PLAY_BUTTON = 43, 41
+
+WIDTH, HEIGHT = 940, 340
+STATUS_H = 64
+BODY, PANEL_EDGE, TEXT = (38, 38, 42), (90, 90, 96), (225, 225, 225)
+BUTTON_OFF, BUTTON_LIT, SLOT, THUMB = (70, 70, 76), (235, 40, 40), (15, 15, 15), (200, 200, 205)
+KNOB, KNOB_MARK = (120, 120, 128), (250, 250, 250)
+
+Control = collections.namedtuple('Control', 'kind channel label rect')
+
+
+def _layout():
+    """Every control of the panel with its screen rectangle."""
+    controls = []
+    bw, bh = 70, 26
+    for channel, (label, col, row, _key) in TRANSPORT.items():
+        rect = pygame.Rect(14 + col * (bw + 6), STATUS_H + 30 + row * 60, bw, bh)
+        controls.append(Control('button', channel, label, rect))
+    x0 = 420
+    for i in range(STRIPS):
+        x = x0 + i * 64
+        controls.append(Control('knob', KNOB_BASE + i, 'K%d' % (i + 1),
+                                pygame.Rect(x + 14, STATUS_H + 12, 36, 36)))
+        for j, (base, name) in enumerate(((S_BASE, 'S'), (M_BASE, 'M'), (R_BASE, 'R'))):
+            controls.append(Control('button', base + i, name,
+                                    pygame.Rect(x + 2, STATUS_H + 80 + j * 46, 24, 20)))
+        controls.append(Control('slider', SLIDER_BASE + i, str(i + 1),
+                                pygame.Rect(x + 34, STATUS_H + 66, 20, 190)))
+    return controls
+
+
+class VirtualPanel(object):
+    """State of the virtual panel and the events it produces."""
+
+    def __init__(self):
+        self.controls = _layout()
+        self._by_channel = {c.channel: c for c in self.controls}
+        self.values = {c.channel: (63 if c.kind == 'slider' else 0)
+                       for c in self.controls if c.kind != 'button'}
+        self.leds = {}
+        self.selected = 0
+        self.pab_text = 'PAB server: no news yet'
+        self._dragging = None
+        self._held = None
+        self._font = None
+
+    def control(self, channel):
+        return self._by_channel[channel]
+
+    def hit(self, pos):
+        """The control under screen position ``pos``, or None."""
+        for control in self.controls:
+            if control.rect.collidepoint(pos):
+                return control
+        return None
+
+    # --- input ---------------------------------------------------------------
+
+    def handle_event(self, event):
+        """Return the list of (channel, value) the event produces."""
+        if event.type == pygame.MOUSEBUTTONDOWN and event.button == 1:
+            control = self.hit(event.pos)
+            if control is None:
+                return []
+            if control.kind == 'button':
+                self._held = control.channel
+                return [(control.channel, PRESSED)]
+            self._dragging = control
+            return self._drag_to(control, event.pos)
+        if event.type == pygame.MOUSEBUTTONUP and event.button == 1:
+            self._dragging = None
+            if self._held is not None:
+                channel, self._held = self._held, None
+                return [(channel, RELEASED)]
+            return []
+        if event.type == pygame.MOUSEMOTION and self._dragging is not None:
+            return self._drag_to(self._dragging, event.pos)
+        if event.type == pygame.MOUSEWHEEL:
+            control = self.hit(pygame.mouse.get_pos())
+            if control is not None and control.kind != 'button':
+                return self._set(control.channel, self.values[control.channel] + 2 * event.y)
+            return []
+        if event.type in (pygame.KEYDOWN, pygame.KEYUP):
+            return self._key(event)
+        return []
+
+    def _drag_to(self, control, pos):
+        rect = control.rect
+        if control.kind == 'slider':
+            fraction = (rect.bottom - pos[1]) / float(rect.height)
+        else:   # knob: the vertical position across a band around the knob
+            fraction = (rect.centery + 50 - pos[1]) / 100.0
+        return self._set(control.channel, int(round(fraction * MIDI_MAX)))
+
+    def _set(self, channel, value):
+        value = max(0, min(MIDI_MAX, value))
+        if self.values.get(channel) == value:
+            return []
+        self.values[channel] = value
+        return [(channel, value)]
+
+    def _key(self, event):
+        down = event.type == pygame.KEYDOWN
+        value = PRESSED if down else RELEASED
+        for channel, (_label, _c, _r, key) in TRANSPORT.items():
+            if event.key == key:
+                return [(channel, value)]
+        if event.key in STRIP_KEYS:
+            return [(STRIP_KEYS[event.key] + self.selected, value)]
+        if not down:
+            return []
+        if pygame.K_1 <= event.key <= pygame.K_8:
+            self.selected = event.key - pygame.K_1
+            return []
+        steps = {pygame.K_UP: (SLIDER_BASE, 4), pygame.K_DOWN: (SLIDER_BASE, -4),
+                 pygame.K_PAGEUP: (SLIDER_BASE, 16), pygame.K_PAGEDOWN: (SLIDER_BASE, -16),
+                 pygame.K_RIGHT: (KNOB_BASE, 4), pygame.K_LEFT: (KNOB_BASE, -4)}
+        if event.key in steps:
+            base, step = steps[event.key]
+            channel = base + self.selected
+            return self._set(channel, self.values[channel] + step)
+        return []
+
+    # --- output ----------------------------------------------------------------
+
+    def set_led(self, button, on):
+        """Light or clear a button LED (a MidiOutput from the Mapper)."""
+        self.leds[button] = bool(on)
+
+    @property
+    def operation_mode(self):
+        return 'PAB' if self.leds.get(OPERATION_MODE_BUTTON) else 'MANUAL'
+
+    def status_lines(self):
+        run = 'playing' if self.leds.get(PLAY_BUTTON) else 'stopped'
+        return ['Operation mode: %s   (%s)   strip %d selected'
+                % (self.operation_mode, run, self.selected + 1), self.pab_text]
+
+    def draw(self, surface):
+        """Draw the whole panel on ``surface`` (WIDTH x HEIGHT)."""
+        if self._font is None:
+            pygame.font.init()
+            self._font = pygame.font.Font(None, 20)
+        surface.fill(BODY)
+        pygame.draw.rect(surface, PANEL_EDGE, surface.get_rect(), 3)
+        pygame.draw.line(surface, PANEL_EDGE, (0, STATUS_H), (WIDTH, STATUS_H), 2)
+        for i, line in enumerate(self.status_lines()):
+            surface.blit(self._font.render(line, True, TEXT), (14, 10 + i * 22))
+        for control in self.controls:
+            getattr(self, '_draw_' + control.kind)(surface, control)
+
+    def _label(self, surface, text, center):
+        image = self._font.render(text, True, TEXT)
+        surface.blit(image, image.get_rect(center=center))
+
+    def _draw_button(self, surface, control):
+        colour = BUTTON_LIT if self.leds.get(control.channel) else BUTTON_OFF
+        pygame.draw.rect(surface, colour, control.rect, border_radius=4)
+        if control.rect.width > 30:
+            self._label(surface, control.label, control.rect.center)
+        else:
+            self._label(surface, control.label, (control.rect.centerx, control.rect.bottom + 9))
+
+    def _draw_slider(self, surface, control):
+        rect = control.rect
+        pygame.draw.rect(surface, SLOT, rect.inflate(-12, 0))
+        y = rect.bottom - int(round(self.values[control.channel] / float(MIDI_MAX) * rect.height))
+        pygame.draw.rect(surface, THUMB, pygame.Rect(rect.x, y - 6, rect.width, 12))
+        self._label(surface, control.label, (rect.centerx, rect.bottom + 12))
+
+    def _draw_knob(self, surface, control):
+        rect = control.rect
+        radius = rect.width // 2
+        pygame.draw.circle(surface, KNOB, rect.center, radius)
+        # 0..127 sweeps from 7 o'clock to 5 o'clock, like the real knob.
+        angle = math.radians(225 - 270 * self.values[control.channel] / float(MIDI_MAX))
+        end = (rect.centerx + int(radius * math.cos(angle)),
+               rect.centery - int(radius * math.sin(angle)))
+        pygame.draw.line(surface, KNOB_MARK, rect.center, end, 3)

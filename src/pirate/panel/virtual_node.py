@@ -1,0 +1,89 @@
+"""ROS edge of the virtual panel: pygame window <-> MidiInput / MidiOutput.
+
+Publishes a MidiInput on ``names.MIDI_INPUT_TOPIC`` for every event the
+:class:`pirate.panel.virtual.VirtualPanel` produces, lights its buttons from
+MidiOutput on ``names.MIDI_OUTPUT_TOPIC``, and shows the PAB state from the
+Pirate Server's action feedback and result (``/pirate/feedback``,
+``/pirate/result``); when no server runs it simply shows no PAB news.
+
+Private params: ``~fps`` (redraw rate, default 30), ``~screenshot`` (path:
+save the window there once after the first LED arrives or after 2 s, for
+documentation). Headless with ``SDL_VIDEODRIVER=dummy``.
+"""
+import os
+import threading
+
+import pygame
+import rospy
+
+from pirate import names
+from pirate.msg import MidiInput, MidiOutput, PirateActionFeedback, PirateActionResult
+from pirate.panel import virtual
+
+#: actionlib_msgs/GoalStatus codes -> words for the operator.
+_TERMINAL = {2: 'preempted', 3: 'succeeded', 4: 'aborted', 5: 'rejected', 8: 'recalled'}
+
+
+class VirtualPanelNode(object):
+    """Run the window loop in the main thread; ROS callbacks only queue state."""
+
+    def __init__(self):
+        self.panel = virtual.VirtualPanel()
+        self._lock = threading.Lock()
+        self._pub = rospy.Publisher(names.MIDI_INPUT_TOPIC, MidiInput, queue_size=200)
+        rospy.Subscriber(names.MIDI_OUTPUT_TOPIC, MidiOutput, self._on_led, queue_size=200)
+        rospy.Subscriber(names.PIRATE_ACTION + '/feedback', PirateActionFeedback,
+                         self._on_feedback, queue_size=10)
+        rospy.Subscriber(names.PIRATE_ACTION + '/result', PirateActionResult,
+                         self._on_result, queue_size=10)
+        self._fps = float(rospy.get_param('~fps', 30.0))
+        self._screenshot = rospy.get_param('~screenshot', '')
+
+    def _on_led(self, msg):
+        with self._lock:
+            self.panel.set_led(msg.button, msg.value)
+
+    def _on_feedback(self, msg):
+        fb = msg.feedback
+        with self._lock:
+            self.panel.pab_text = 'PAB running: %s / %s / %s %s' % (
+                fb.server_state, fb.pab_state, fb.primitive, fb.guard)
+
+    def _on_result(self, msg):
+        outcome = _TERMINAL.get(msg.status.status, 'ended')
+        with self._lock:
+            self.panel.pab_text = 'PAB %s: %s' % (outcome, msg.result.message)
+
+    def run(self):
+        pygame.display.init()
+        try:
+            screen = pygame.display.set_mode((virtual.WIDTH, virtual.HEIGHT))
+        except pygame.error as err:
+            rospy.logfatal('virtual panel: cannot open a window (%s); set DISPLAY, or '
+                           'SDL_VIDEODRIVER=dummy to run headless', err)
+            return
+        pygame.display.set_caption('PIRATE panel (virtual nanoKONTROL2)')
+        clock = pygame.time.Clock()
+        start = rospy.get_time()
+        while not rospy.is_shutdown():
+            for event in pygame.event.get():
+                if event.type == pygame.QUIT:
+                    rospy.signal_shutdown('virtual panel window closed')
+                    return
+                with self._lock:
+                    produced = self.panel.handle_event(event)
+                for channel, value in produced:
+                    self._pub.publish(MidiInput(channel=channel, value=value))
+            with self._lock:
+                self.panel.draw(screen)
+            pygame.display.flip()
+            if self._screenshot and (self.panel.leds or rospy.get_time() - start > 2.0):
+                pygame.image.save(screen, os.path.expanduser(self._screenshot))
+                rospy.loginfo('virtual panel: screenshot saved to %s', self._screenshot)
+                self._screenshot = ''
+            clock.tick(self._fps)
+
+
+def main():
+    rospy.init_node('virtual_panel')
+    VirtualPanelNode().run()

@@ -1,0 +1,152 @@
+"""Motion primitives (report 4.7.2, 5.9; SPEC 7) and the safe hold.
+
+Basic primitives write a message and return. Advanced ones write, then wait
+on the robot state for their guard (event-driven, :mod:`pirate.feed`), with
+a timeout and an immediate stop on cancel. Guards and setpoints come from
+:class:`pirate.guards.Guards`; limits are those of :mod:`pirate.safety`,
+enforced inside the Setpoint/Control classes. Pure Python.
+"""
+from pirate import safety, units
+from pirate.guards import CLAMP_BENDS
+
+
+class Refused(ValueError):
+    """A primitive asked for something outside the robot's limits."""
+
+
+def clamp_name(kind, part):
+    """Primitive name as the report's tables write it, e.g. 'clamp rear custom'."""
+    if kind == 'clamp':
+        return 'clamp %s' % part
+    return 'clamp %s custom%s' % (part, ' first' if kind.endswith('_first') else '')
+
+
+class MotionPrimitives(object):
+    """The robot's motion vocabulary, over shared Setpoint/Control/Limit."""
+
+    def __init__(self, setpoint, control, limit, feed, notify=None):
+        self.setpoint = setpoint
+        self.control = control
+        self.limit = limit
+        self.feed = feed
+        self.guards = None
+        self.executed = []          # names of advanced primitives, in order
+        self.notify = notify or (lambda primitive, guard: None)
+
+    def use(self, guards):
+        """Work with the guards of the goal's pipe diameter."""
+        self.guards = guards
+        self.executed = []
+
+    # --- basic ------------------------------------------------------------
+    def move_module(self, joint, counts):
+        """Setpoint for the front module or a bend module (counts)."""
+        self.setpoint.set(joint, counts)
+
+    def change_control_mode(self, joint, mode):
+        """Control mode of one motor; goes out at once if it changed."""
+        self.control.set_mode(joint, mode)
+
+    def change_limit(self, bend, value):
+        """Torque limit of one bend module (uint16, 0xFFFF none)."""
+        self.limit.set(bend, value)
+
+    def drive_at_velocity(self, mm_s):
+        """Wheels at ``mm_s`` (signed); refused above the robot's maximum."""
+        if not safety.drive_speed_ok(mm_s):
+            raise Refused('drive speed %.1f mm/s beyond %.0f mm/s' % (mm_s, safety.DRIVE_MAX_MM_S))
+        self.control.set_mode('wheels', 'velocity')
+        self.setpoint.set('wheels', units.mm_s_to_wheel_counts(mm_s))
+
+    # --- advanced ---------------------------------------------------------
+    def _wait(self, name, guard, text):
+        self.executed.append(name)
+        self.notify(name, text)
+        view = self.feed.wait_until(guard, self.guards.primitive_timeout, '%s: %s' % (name, text))
+        self.notify('', '%s reached %s' % (name, text))
+        return view
+
+    def clamp(self, part, kind='clamp'):
+        """Clamp ``part`` ('front'/'rear') with guards ``kind`` (report 4.7.2.3).
+
+        Bends in torque mode; when both guards hold, the inner bend gets 0 to
+        release its torque so the other part can still move.
+        """
+        pair = self.guards.pair(kind, part)
+        for bend in (pair.outer, pair.inner):
+            self.control.set_mode(bend.joint, 'torque')
+            self.setpoint.set(bend.joint, bend.setpoint)
+        self._wait(clamp_name(kind, part),
+                   lambda v: (v.angles[pair.outer.joint] <= pair.outer.guard
+                              and v.angles[pair.inner.joint] >= pair.inner.guard),
+                   '%s <= %.2f and %s >= %.2f' % (pair.outer.joint, pair.outer.guard,
+                                                   pair.inner.joint, pair.inner.guard))
+        self.setpoint.set(pair.inner.joint, 0)
+
+    def unclamp(self, part, partial=False):
+        """Open ``part``'s V fully (Home) or partially (re-adjust), 4.7.2.5."""
+        pair = self.guards.pair('unclamp_partial' if partial else 'unclamp', part)
+        for bend in (pair.outer, pair.inner):
+            self.control.set_mode(bend.joint, 'torque')
+            self.setpoint.set(bend.joint, bend.setpoint)
+        self._wait('unclamp %s%s' % (part, ' partial' if partial else ''),
+                   lambda v: (v.angles[pair.outer.joint] >= pair.outer.guard
+                              and v.angles[pair.inner.joint] <= pair.inner.guard),
+                   '%s >= %.2f and %s <= %.2f' % (pair.outer.joint, pair.outer.guard,
+                                                   pair.inner.joint, pair.inner.guard))
+
+    def rotate(self, target_rad, name='rotate'):
+        """Rotational module to ``target_rad`` from aligned (4.7.2.2).
+
+        Refused beyond +-0.7 rad (pirate.safety); the part that is not
+        clamped turns (Table 4.5).
+        """
+        if not safety.rotation_ok(target_rad):
+            raise Refused('rotation %.3f rad beyond +-%.1f rad' % (target_rad, safety.ROTATION_MAX_RAD))
+        tolerance = self.guards.rotate_tolerance
+        self.control.set_mode('rotation', 'position')
+        self.setpoint.set('rotation', units.rad_to_rotation(target_rad))
+        self._wait(name, lambda v: abs(v.angles['rotation'] - target_rad) <= tolerance,
+                   '|rotation - %.3f| <= %.4f' % (target_rad, tolerance))
+
+    def align(self):
+        """Rotation back to 0 (4.7.2.6): the front part follows the rear."""
+        self.rotate(0.0, name='align')
+
+    def move_front(self, kind='move_front'):
+        """Front module up (or down) in PWM until its guard, then stop it."""
+        move = self.guards.move(kind)
+        self.control.set_mode('front_tilt', 'pwm')
+        self.setpoint.set('front_tilt', move.setpoint)
+        if move.setpoint >= 0:
+            guard, text = (lambda v: v.angles['front_tilt'] >= move.guard), 'front_tilt >= %.3f' % move.guard
+        else:
+            guard, text = (lambda v: v.angles['front_tilt'] <= move.guard), 'front_tilt <= %.3f' % move.guard
+        try:
+            self._wait(kind.replace('_', ' '), guard, text)
+        finally:
+            self.setpoint.set('front_tilt', 0)
+
+    # --- safety -----------------------------------------------------------
+    def safe_hold(self):
+        """The one safe state: no motor moves; sent at once, past the pacing.
+
+        Bends, front module and wheels get 0 in PWM/torque/velocity (no drive;
+        the worm gears hold); the rotation, in position mode, gets its current
+        angle so it stays where it is instead of aligning.
+        """
+        for joint in CLAMP_BENDS['front'] + CLAMP_BENDS['rear'] + ('front_tilt', 'wheels'):
+            if self.control.mode_of(joint) == 'position':
+                self.setpoint.set(joint, self._current_counts(joint))
+            else:
+                self.setpoint.set(joint, 0)
+        if self.control.mode_of('rotation') == 'position':
+            self.setpoint.set('rotation', self._current_counts('rotation'))
+        return self.setpoint.publish_now()
+
+    def _current_counts(self, joint):
+        view = self.feed.latest()
+        angle = view.angles[joint] if view is not None else 0.0
+        if joint == 'rotation':
+            return units.rad_to_rotation(max(-safety.ROTATION_MAX_RAD, min(safety.ROTATION_MAX_RAD, angle)))
+        return units.rad_to_encoder(angle)

@@ -1,0 +1,154 @@
+"""Pirate Server (report 4.7, 5.8): checks goals, runs PABs, one exit path.
+
+Pure Python; :mod:`pirate.manager_node` wires it to an actionlib
+ActionServer. Rules:
+- a goal it cannot do is refused at once with the reason (unknown or
+  unbuilt PAB, no guards for the diameter, out-of-range drive, robot not
+  clamped for Drive, no robot state, another goal running — never queued);
+- :meth:`run` has one exit path: whatever ends the PAB (success, cancel,
+  timeout, lost feedback, a refused primitive, a bug) it returns exactly one
+  outcome, and every outcome but success leaves the robot in the safe hold;
+- the server's own state follows Fig 4.2: Idle Unclamped, Idle Clamped, or
+  the running PAB.
+"""
+import collections
+import threading
+import traceback
+
+from pirate import feed as feeds
+from pirate import safety
+from pirate.guards import NoGuards
+from pirate.pabs import PABS
+from pirate.pabs.base import PabFailed
+from pirate.primitives import Refused
+
+IDLE_UNCLAMPED = 'Idle Unclamped'
+IDLE_CLAMPED = 'Idle Clamped'
+SUCCEEDED, ABORTED, PREEMPTED = 'succeeded', 'aborted', 'preempted'
+
+Outcome = collections.namedtuple('Outcome', 'status message')
+Feedback = collections.namedtuple('Feedback', 'server_state pab_state primitive guard')
+
+
+class PabContext(object):
+    """What a running PAB works with."""
+
+    def __init__(self, prims, feed, guards, goal, report):
+        self.prims = prims
+        self.feed = feed
+        self.guards = guards
+        self.goal = goal
+        self.report = report
+
+
+def robot_clamped(view, guards):
+    """True when both parts are past their full clamp guards."""
+    for part in ('front', 'rear'):
+        pair = guards.pair('clamp', part)
+        if not (view.angles[pair.outer.joint] <= pair.outer.guard
+                and view.angles[pair.inner.joint] >= pair.inner.guard):
+            return False
+    return True
+
+
+class PirateServer(object):
+    """Goal checking, PAB execution and the server state machine."""
+
+    def __init__(self, prims, feed, book, start_robot, feedback=None, log=None):
+        self.prims = prims
+        self.feed = feed
+        self.book = book
+        self._start_robot = start_robot
+        self._feedback = feedback or (lambda fb: None)
+        self._log = log or (lambda text: None)
+        self._lock = threading.Lock()
+        self.state = IDLE_UNCLAMPED
+        self.active = None          # name of the running PAB
+        self.pab_state = ''
+        self.primitive = ''
+        prims.notify = self._on_primitive
+
+    # --- accepting --------------------------------------------------------
+    def reserve(self, goal):
+        """Check ``goal`` and, if it can run, mark it running. Return a reason or None."""
+        with self._lock:
+            reason = self._check(goal)
+            if reason is None:
+                self.active = PABS[goal.name][0]
+                self.feed.clear_cancel()
+            return reason
+
+    def _check(self, goal):
+        if self.active:
+            return 'a PAB is running (%s): cancel it first; goals are not queued' % self.active
+        if goal.name not in PABS:
+            return 'unknown PAB code %r (known: %s)' % (goal.name, ', '.join(
+                '%d %s' % (code, row[0]) for code, row in sorted(PABS.items())))
+        name, pab_class = PABS[goal.name]
+        if pab_class is None:
+            return 'PAB %s is not implemented yet' % name
+        try:
+            guards = self.book.for_diameter(goal.pipe_diameter)
+        except NoGuards as missing:
+            return '%s: %s' % (name, missing)
+        view = self.feed.latest()
+        if view is None or not self.feed.fresh():
+            return '%s: no robot state (is the robot connected and the state node running?)' % name
+        if pab_class.requires_clamped and not robot_clamped(view, guards):
+            return '%s needs the robot clamped (%s); it is not' % (name, IDLE_CLAMPED)
+        return pab_class().check(goal, view, guards)
+
+    def cancel(self):
+        """Cancel the running goal; the PAB stops at its next wake-up."""
+        self.feed.cancel()
+
+    @property
+    def cancelled(self):
+        """True when the running goal has been asked to cancel."""
+        return bool(self.active) and self.feed.cancelled
+
+    # --- running ----------------------------------------------------------
+    def run(self, goal):
+        """Run a reserved goal to its one :data:`Outcome`."""
+        name, pab_class = PABS[goal.name]
+        guards = self.book.for_diameter(goal.pipe_diameter)
+        pab = pab_class()
+        self.prims.use(guards)
+        self.state = pab.name
+        outcome = Outcome(ABORTED, '%s did not start' % pab.name)
+        try:
+            self._start_robot()
+            ctx = PabContext(self.prims, self.feed, guards, goal, self._report)
+            outcome = Outcome(SUCCEEDED, '%s: %s' % (pab.name, pab.run(ctx)))
+        except feeds.Cancelled:
+            outcome = Outcome(PREEMPTED, '%s cancelled during %s' % (pab.name, self.pab_state))
+        except (feeds.TimedOut, feeds.FeedbackLost, PabFailed, Refused, NoGuards, safety.Refused) as failure:
+            outcome = Outcome(ABORTED, '%s aborted in %s: %s' % (pab.name, self.pab_state, failure))
+        except Exception as bug:  # pylint: disable=broad-except; a bug must still end safe
+            outcome = Outcome(ABORTED, '%s aborted by an internal error: %r' % (pab.name, bug))
+            self._log(traceback.format_exc())
+        finally:
+            if outcome.status != SUCCEEDED:
+                self.prims.safe_hold()
+            self._finish(pab, guards, outcome)
+        return outcome
+
+    def _finish(self, pab, guards, outcome):
+        view = self.feed.latest()
+        if outcome.status == SUCCEEDED:
+            self.state = IDLE_CLAMPED if pab.leaves == 'clamped' else IDLE_UNCLAMPED
+        else:
+            self.state = IDLE_CLAMPED if view is not None and robot_clamped(view, guards) else IDLE_UNCLAMPED
+        self._log(outcome.message)
+        with self._lock:
+            self.active = None
+            self.pab_state = self.primitive = ''
+        self._feedback(Feedback(self.state, '', '', ''))
+
+    def _report(self, pab_state, guard=''):
+        self.pab_state = pab_state
+        self._feedback(Feedback(self.state, pab_state, self.primitive, guard))
+
+    def _on_primitive(self, primitive, guard):
+        self.primitive = primitive
+        self._feedback(Feedback(self.state, self.pab_state, primitive, guard))

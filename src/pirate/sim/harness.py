@@ -1,0 +1,125 @@
+"""The whole sequencer against the simulated robot, in one process, no ROS.
+
+Same objects as the ROS stack (Setpoint/Control/Limit, StateAssembler,
+RobotFeed, MotionPrimitives, PirateServer), the topics replaced by direct
+calls. A robot thread steps the model and pushes a state every Mega cycle
+(0.1 s of robot time), pacing itself at ``speedup`` times real time, so the
+wall-clock feedback watchdog behaves as with a real robot. Used by the fast
+test tier and the benchmarks; the rostests cover the ROS wiring.
+"""
+import threading
+import time
+
+from pirate import commands, tables
+from pirate.feed import RobotFeed, RobotView
+from pirate.guards import GuardBook, load_files
+from pirate.primitives import MotionPrimitives
+from pirate.server import PirateServer
+from pirate.sim.model import PirateModel
+from pirate.state import StateAssembler
+
+PICO_PERIOD_S = 0.02
+STEPS_PER_CYCLE = 5
+
+
+class _Wire(object):
+    """A publisher that records what went out and hands it to the robot."""
+
+    def __init__(self, on_publish):
+        self.sent = []
+        self._on_publish = on_publish
+
+    def publish(self, data):
+        self.sent.append((time.monotonic(), list(data)))
+        self._on_publish()
+
+
+def view_of(snapshot, stamp):
+    """A :class:`RobotView` from a :class:`pirate.state.Snapshot`."""
+    return RobotView(dict(zip(snapshot.name, snapshot.position)), snapshot.orientation,
+                     snapshot.odometry, snapshot.velocity, stamp)
+
+
+class SimHarness(object):
+    """Model + sequencer, wired directly. Use as a context manager."""
+
+    def __init__(self, speedup=20.0, feedback_timeout=None, **model_args):
+        self.model = PirateModel(**model_args)
+        self.speedup = speedup
+        self._lock = threading.RLock()
+        self.wires = {name: _Wire(self._apply) for name in ('setpoint', 'control', 'limit')}
+        self.control = commands.Control(self.wires['control'], list)
+        self.setpoint = commands.Setpoint(self.wires['setpoint'], list, self.control)
+        self.limit = commands.Limit(self.wires['limit'], list)
+        book = GuardBook(*load_files())
+        self.feed = RobotFeed(feedback_timeout or book.common['feedback_timeout'])
+        self.prims = MotionPrimitives(self.setpoint, self.control, self.limit, self.feed)
+        self.feedback = []
+        self.log = []
+        self.server = PirateServer(self.prims, self.feed, book, self.start_robot,
+                                   feedback=self.feedback.append, log=self.log.append)
+        self.assembler = StateAssembler()
+        self.robot_time = 1.0
+        self.frozen = False           # True: the robot stops reporting
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._robot_loop, daemon=True)
+
+    def start_robot(self):
+        """What the manager does when a goal starts: PLAY and paced arrays."""
+        self.control.command('play')
+        self.setpoint.enabled = self.limit.enabled = True
+        self.setpoint.tick()
+
+    def _apply(self):
+        with self._lock:
+            self.model.command(self.setpoint.get_all(), self.control.get_all(), self.limit.get_all())
+
+    def _robot_loop(self):
+        wall_next = time.monotonic()
+        cycle = 0
+        while not self._stop.is_set():
+            with self._lock:
+                for _ in range(STEPS_PER_CYCLE):
+                    self.model.step(PICO_PERIOD_S)
+                self.robot_time += PICO_PERIOD_S * STEPS_PER_CYCLE
+                states = [(b, self.model.small_state(b)) for b in tables.BOARDS]
+            cycle += 1
+            if not self.frozen:
+                now = time.monotonic()
+                for board, data in states:
+                    self.assembler.update(board, data, now)
+                self.feed.push(view_of(self.assembler.snapshot(now), self.robot_time))
+            self.setpoint.tick()       # the manager's 10 Hz timer, robot time
+            self.limit.tick()
+            wall_next += PICO_PERIOD_S * STEPS_PER_CYCLE / self.speedup
+            time.sleep(max(0.0, wall_next - time.monotonic()))
+
+    def __enter__(self):
+        self._thread.start()
+        deadline = time.monotonic() + 5.0
+        while self.feed.latest() is None and time.monotonic() < deadline:
+            time.sleep(0.001)
+        return self
+
+    def __exit__(self, *exc):
+        self._stop.set()
+        self._thread.join(2.0)
+
+    def goal(self, name, pipe_diameter=90, distance=0.0, speed=0.0, option=0):
+        """A goal object with the fields of Pirate.action's goal."""
+        return _Goal(name, pipe_diameter, distance, speed, option)
+
+    def execute(self, goal):
+        """Reserve and run ``goal``: (reason refused, None) or (None, Outcome)."""
+        reason = self.server.reserve(goal)
+        if reason:
+            return reason, None
+        return None, self.server.run(goal)
+
+
+class _Goal(object):
+    __slots__ = ('name', 'pipe_diameter', 'distance', 'speed', 'option')
+
+    def __init__(self, name, pipe_diameter, distance, speed, option):
+        self.name, self.pipe_diameter, self.distance = name, pipe_diameter, distance
+        self.speed, self.option = speed, option

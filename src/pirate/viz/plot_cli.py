@@ -1,0 +1,67 @@
+"""plot_run: turn a run's rosbag into a PNG like the report's Figs 6.1-6.7.
+
+    rosrun pirate plot_run RUN.bag [-o RUN.png] [--guards config/guards_90.yaml]
+
+Without --guards, the guard lines come from config/guards_<D>.yaml for the
+pipe diameter D the run's goal named, when that file exists; a run without
+one is plotted without guard lines. Prints one line per primitive marker.
+"""
+import argparse
+import os
+import sys
+
+import rospkg
+import yaml
+
+from pirate.viz import bag, plot
+
+
+def _default_guards(diameter):
+    """config/guards_<diameter>.yaml of the pirate package, None if absent."""
+    try:
+        path = os.path.join(rospkg.RosPack().get_path('pirate'), 'config',
+                            'guards_%d.yaml' % diameter)
+    except rospkg.ResourceNotFound:
+        return None
+    return path if os.path.exists(path) else None
+
+
+def _guard_config(path, diameters):
+    """(parsed guard YAML, its path): ``path``, else the goal pipe's, else None."""
+    if path is None and diameters:
+        path = _default_guards(diameters[-1])
+    if path is None:
+        return None, None
+    with open(path) as f:
+        return yaml.safe_load(f), path
+
+
+def plot_bag(bag_path, output, guards=None, title=None):
+    """Plot the run in ``bag_path`` to ``output``: (run, panels, config path).
+
+    ``guards`` is a guard YAML path; None picks the goal pipe's. Raises
+    OSError, ValueError, yaml.YAMLError or bag.BagError on bad input.
+    """
+    run, diameters = bag.read_run(bag_path)
+    config, config_path = _guard_config(guards, diameters)
+    lines = plot.guard_lines(config, [p for _, p in run.markers])
+    drawn, _ = plot.plot_run(run, output, lines, title or os.path.basename(bag_path))
+    return run, drawn, config_path
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    parser.add_argument('bag', help='rosbag recorded by launch/record.launch')
+    parser.add_argument('-o', '--output', help='PNG to write (default: the bag with .png)')
+    parser.add_argument('--guards', help='guard config YAML (default: by the goal\'s pipe)')
+    parser.add_argument('--title', help='figure title (default: the bag\'s name)')
+    args = parser.parse_args(argv)
+    output = args.output or os.path.splitext(args.bag)[0] + '.png'
+    try:
+        run, _, config_path = plot_bag(args.bag, output, args.guards, args.title)
+    except (OSError, ValueError, yaml.YAMLError, bag.BagError) as error:
+        sys.exit('plot_run: %s' % error)
+    for i, (t, primitive) in enumerate(run.markers, 1):
+        print('t%d %7.2f s  %s' % (i, t, primitive))
+    print('wrote %s (%d samples, %d primitives, guards: %s)'
+          % (output, len(run.times), len(run.markers), config_path or 'none'))

@@ -1,0 +1,157 @@
+#!/usr/bin/env python3
+"""Generic panel scenario: play recorded MIDI events, check the outcome.
+
+Each test/rostest/panel_*.test holds one scenario as the ``~steps`` param
+(teleop_twist_joy style): a list of one-key dicts, run in order.
+
+  press: CH                      MIDI press + release of button CH
+  midi: [CH, VALUE]              one MidiInput event
+  wait_moved: {joint, min_rad, timeout_s}
+                                 |angle - angle at the step| >= min_rad in time
+  expect_still: {joints, tol_rad, for_s}
+                                 none of them moves more than tol_rad for for_s
+  wait_led: {button, lit, timeout_s}     the Mapper lit / cleared an LED
+  expect_led_stays: {button, lit, for_s} and it does not change
+  wait_log: {contains, timeout_s}        the manager told the operator
+  wait_goal: {status, timeout_s}         Pirate Server goal reached a status
+                                         (active, preempted, succeeded, aborted)
+  wait_setpoints_zero: {elements, timeout_s}
+                                 the setpoint array on the wire has 0 there
+
+Timeouts are wall-clock seconds; the robot runs in simulated time (faster).
+Before the first step it waits for the robot state and for the manager to
+subscribe the panel topic and send its LEDs.
+"""
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from actionlib_msgs.msg import GoalStatusArray
+from rosgraph_msgs.msg import Log
+
+from pirate import names, tables
+from pirate.msg import MidiInput, MidiOutput, PirateActionResult, RobotState, SetpointArray
+
+STATUS = {'active': 1, 'preempted': 2, 'succeeded': 3, 'aborted': 4, 'rejected': 5}
+POLL_S = 0.02
+
+
+class PanelScenario(unittest.TestCase):
+
+    def setUp(self):
+        self.lock = threading.Lock()
+        self.angles, self.leds, self.logs, self.statuses, self.setpoints = {}, {}, [], set(), None
+        rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state)
+        rospy.Subscriber(names.MIDI_OUTPUT_TOPIC, MidiOutput, self._on_led)
+        rospy.Subscriber('/rosout', Log, self._on_log)
+        rospy.Subscriber(names.PIRATE_ACTION + '/status', GoalStatusArray, self._on_status)
+        rospy.Subscriber(names.PIRATE_ACTION + '/result', PirateActionResult, self._on_result)
+        rospy.Subscriber(names.SETPOINT_TOPIC, SetpointArray, self._on_setpoints)
+        self.pub = rospy.Publisher(names.MIDI_INPUT_TOPIC, MidiInput, queue_size=100)
+
+    # --- recorders ---------------------------------------------------------------
+    def _on_state(self, msg):
+        with self.lock:
+            self.angles = dict(zip(msg.name, msg.position))
+
+    def _on_led(self, msg):
+        with self.lock:
+            self.leds[msg.button] = msg.value
+
+    def _on_log(self, msg):
+        with self.lock:
+            self.logs.append(msg.msg)
+
+    def _on_status(self, msg):
+        with self.lock:
+            self.statuses.update(s.status for s in msg.status_list)
+
+    def _on_result(self, msg):
+        with self.lock:
+            self.statuses.add(msg.status.status)
+
+    def _on_setpoints(self, msg):
+        with self.lock:
+            self.setpoints = list(msg.data)
+
+    # --- helpers ---------------------------------------------------------------------
+    def _until(self, condition, timeout_s, what):
+        deadline = time.monotonic() + timeout_s
+        while time.monotonic() < deadline and not rospy.is_shutdown():
+            with self.lock:
+                if condition():
+                    return
+            time.sleep(POLL_S)
+        self.fail('timed out after %.1f s waiting for %s' % (timeout_s, what))
+
+    def _during(self, condition, for_s, what):
+        deadline = time.monotonic() + for_s
+        while time.monotonic() < deadline and not rospy.is_shutdown():
+            with self.lock:
+                self.assertTrue(condition(), what)
+            time.sleep(POLL_S)
+
+    def _send(self, channel, value):
+        self.pub.publish(MidiInput(channel=int(channel), value=int(value)))
+
+    # --- steps -----------------------------------------------------------------------
+    def step_press(self, channel):
+        self._send(channel, 127)
+        self._send(channel, 0)
+
+    def step_midi(self, event):
+        self._send(*event)
+
+    def step_wait_moved(self, arg):
+        joint, start = arg['joint'], None
+        with self.lock:
+            start = self.angles[joint]
+        self._until(lambda: abs(self.angles[joint] - start) >= arg['min_rad'],
+                    arg.get('timeout_s', 15), '%s to move %.2f rad' % (joint, arg['min_rad']))
+
+    def step_expect_still(self, arg):
+        with self.lock:
+            start = {j: self.angles[j] for j in arg['joints']}
+        moved = lambda: [j for j in start if abs(self.angles[j] - start[j]) > arg['tol_rad']]
+        self._during(lambda: not moved(), arg['for_s'],
+                     'joints moved: %s' % arg['joints'])
+
+    def step_wait_led(self, arg):
+        self._until(lambda: self.leds.get(arg['button']) == arg['lit'], arg.get('timeout_s', 10),
+                    'LED %d %s' % (arg['button'], 'on' if arg['lit'] else 'off'))
+
+    def step_expect_led_stays(self, arg):
+        self._during(lambda: self.leds.get(arg['button'], False) == arg['lit'], arg['for_s'],
+                     'LED %d changed' % arg['button'])
+
+    def step_wait_log(self, arg):
+        self._until(lambda: any(arg['contains'] in line for line in self.logs),
+                    arg.get('timeout_s', 10), 'a log containing %r' % arg['contains'])
+
+    def step_wait_goal(self, arg):
+        code = STATUS[arg['status']]
+        self._until(lambda: code in self.statuses, arg.get('timeout_s', 15),
+                    'goal status %s (seen %s)' % (arg['status'], sorted(self.statuses)))
+
+    def step_wait_setpoints_zero(self, arg):
+        indices = [tables.element(name).index for name in arg['elements']]
+        self._until(lambda: self.setpoints is not None and all(self.setpoints[i] == 0 for i in indices),
+                    arg.get('timeout_s', 10), 'zero setpoints at %s' % arg['elements'])
+
+    # --- the test ----------------------------------------------------------------------
+    def test_scenario(self):
+        steps = rospy.get_param('~steps')
+        self._until(lambda: bool(self.angles), 30, 'the robot state on %s' % names.ROBOT_STATE_TOPIC)
+        self._until(lambda: self.pub.get_num_connections() > 0, 30, 'the manager to subscribe the panel')
+        self._until(lambda: 42 in self.leds, 30, 'the manager to send its LEDs')
+        for number, step in enumerate(steps):
+            (kind, arg), = step.items()
+            rospy.loginfo('panel scenario step %d: %s %s', number, kind, arg)
+            getattr(self, 'step_' + kind)(arg)
+
+
+if __name__ == '__main__':
+    rospy.init_node('panel_scenario')
+    rostest.rosrun('pirate', 'panel_scenario', PanelScenario)

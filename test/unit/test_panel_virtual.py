@@ -1,0 +1,134 @@
+"""Virtual panel without ROS: synthesised pygame events -> (channel, value);
+LED state -> pixels; a screenshot under Xvfb shows the panel."""
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+os.environ.setdefault('SDL_VIDEODRIVER', 'dummy')
+os.environ.setdefault('PYGAME_HIDE_SUPPORT_PROMPT', '1')
+
+import pygame  # noqa: E402
+import pytest  # noqa: E402
+
+from pirate.panel import virtual  # noqa: E402
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..'))
+
+
+@pytest.fixture
+def panel():
+    pygame.display.init()
+    pygame.font.init()
+    yield virtual.VirtualPanel()
+    pygame.display.quit()
+
+
+def click(panel, channel):
+    pos = panel.control(channel).rect.center
+    down = panel.handle_event(pygame.event.Event(pygame.MOUSEBUTTONDOWN, button=1, pos=pos))
+    up = panel.handle_event(pygame.event.Event(pygame.MOUSEBUTTONUP, button=1, pos=pos))
+    return down + up
+
+
+@pytest.mark.parametrize('channel', [41, 42, 43, 59, 60, 32, 39, 48, 55, 64, 71, 46, 61, 62, 44, 45, 58])
+def test_click_on_a_button_presses_and_releases_it(panel, channel):
+    assert click(panel, channel) == [(channel, 127), (channel, 0)]
+
+
+def test_every_nanokontrol2_control_is_there(panel):
+    channels = {c.channel for c in panel.controls}
+    expected = set(range(0, 8)) | set(range(16, 24)) | set(range(32, 40)) | set(range(48, 56)) \
+        | set(range(64, 72)) | {41, 42, 43, 44, 45, 46, 58, 59, 60, 61, 62}
+    assert channels == expected
+
+
+def test_dragging_a_slider_sends_its_values(panel):
+    rect = panel.control(4).rect
+    events = panel.handle_event(pygame.event.Event(pygame.MOUSEBUTTONDOWN, button=1, pos=(rect.centerx, rect.top)))
+    assert events == [(4, 127)]
+    events = panel.handle_event(pygame.event.Event(pygame.MOUSEMOTION, pos=(rect.centerx, rect.bottom), rel=(0, 1), buttons=(1, 0, 0)))
+    assert events == [(4, 0)]
+    panel.handle_event(pygame.event.Event(pygame.MOUSEBUTTONUP, button=1, pos=(rect.centerx, rect.bottom)))
+    assert panel.handle_event(pygame.event.Event(pygame.MOUSEMOTION, pos=rect.center, rel=(0, 1), buttons=(0, 0, 0))) == []
+
+
+def test_keyboard_selects_a_strip_and_moves_its_controls(panel):
+    key = lambda k, t=pygame.KEYDOWN: panel.handle_event(pygame.event.Event(t, key=k, mod=0, unicode=''))
+    key(pygame.K_5)
+    assert key(pygame.K_UP) == [(4, 67)]
+    assert key(pygame.K_RIGHT) == [(20, 4)]
+    assert key(pygame.K_s) == [(36, 127)] and key(pygame.K_s, pygame.KEYUP) == [(36, 0)]
+    assert key(pygame.K_SPACE) == [(42, 127)]
+    for _ in range(40):
+        key(pygame.K_PAGEUP)
+    assert panel.values[4] == 127   # held within 0-127
+
+
+def test_led_message_changes_what_is_drawn(panel):
+    surface = pygame.Surface((virtual.WIDTH, virtual.HEIGHT))
+    point = panel.control(43).rect.move(3, 3).topleft
+    panel.draw(surface)
+    assert tuple(surface.get_at(point))[:3] == virtual.BUTTON_OFF
+    panel.set_led(43, True)
+    panel.draw(surface)
+    assert tuple(surface.get_at(point))[:3] == virtual.BUTTON_LIT
+    assert panel.operation_mode == 'PAB'
+
+
+SHOT = r'''
+import os, sys
+import pygame
+from pirate.panel import virtual
+pygame.display.init()
+screen = pygame.display.set_mode((virtual.WIDTH, virtual.HEIGHT))
+print(pygame.display.get_driver())
+panel = virtual.VirtualPanel()
+for button in (41, 43, 36, 59):
+    panel.set_led(button, True)
+panel.pab_text = 'PAB running: Clamp Straight / moving front'
+panel.draw(screen)
+pygame.display.flip()
+pygame.image.save(screen, sys.argv[1])
+'''
+
+
+def _free_display():
+    for n in range(90, 140):
+        if not os.path.exists('/tmp/.X11-unix/X%d' % n) and not os.path.exists('/tmp/.X%d-lock' % n):
+            return n
+    raise RuntimeError('no free X display number')
+
+
+@pytest.mark.skipif(shutil.which('Xvfb') is None, reason='Xvfb is not installed')
+def test_screenshot_under_xvfb_shows_the_panel():
+    out_dir = os.path.join(ROOT, 'test-results')
+    os.makedirs(out_dir, exist_ok=True)
+    path = os.path.join(out_dir, 'virtual_panel.png')
+    if os.path.exists(path):
+        os.remove(path)
+    display = _free_display()
+    xvfb = subprocess.Popen(['Xvfb', ':%d' % display, '-screen', '0', '1024x768x24', '-nolisten', 'tcp'],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 10
+        while not os.path.exists('/tmp/.X11-unix/X%d' % display):
+            assert xvfb.poll() is None and time.monotonic() < deadline, 'Xvfb did not start'
+            time.sleep(0.05)
+        env = dict(os.environ, DISPLAY=':%d' % display, SDL_VIDEODRIVER='x11')
+        run = subprocess.run([sys.executable, '-c', SHOT, path], env=env, timeout=30,
+                             capture_output=True, text=True)
+        assert run.returncode == 0, run.stderr
+        assert 'x11' in run.stdout
+    finally:
+        xvfb.terminate()
+        xvfb.wait(timeout=10)
+    image = pygame.image.load(path)
+    assert image.get_size() == (virtual.WIDTH, virtual.HEIGHT)
+    panel = virtual.VirtualPanel()
+    lit = panel.control(43).rect.move(3, 3).topleft
+    dark = panel.control(42).rect.move(3, 3).topleft
+    assert tuple(image.get_at(lit))[:3] == virtual.BUTTON_LIT
+    assert tuple(image.get_at(dark))[:3] == virtual.BUTTON_OFF
+    assert tuple(image.get_at((virtual.WIDTH // 2, virtual.HEIGHT - 8)))[:3] == virtual.BODY
