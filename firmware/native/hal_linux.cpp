@@ -1,6 +1,7 @@
 // Hardware layer for Linux (firmware-in-the-loop): the laptop link is
 // stdin/stdout (the FIL runner connects them to a pseudo-terminal), the
-// RS485 bus is file descriptor 3 (a socket to the simulated PICO boards).
+// RS485 bus is a socket to the simulated PICO boards, file descriptor
+// hal_linux_bus_fd (set by main from argv, default 3).
 #include <errno.h>
 #include <poll.h>
 #include <stdio.h>
@@ -12,7 +13,7 @@
 
 namespace {
 
-const int kLinkIn = 0, kLinkOut = 1, kBus = 3;
+const int kLinkIn = 0, kLinkOut = 1;
 
 struct Input {
   int fd;
@@ -20,7 +21,7 @@ struct Input {
   ssize_t len, pos;
 };
 Input link_in = {kLinkIn, {0}, 0, 0};
-Input bus_in = {kBus, {0}, 0, 0};
+Input bus_in = {3, {0}, 0, 0};
 
 int next_byte(Input &in) {
   if (in.pos >= in.len) {
@@ -58,9 +59,11 @@ void write_all(int fd, const uint8_t *data, uint16_t n) {
 
 }  // namespace
 
+int hal_linux_bus_fd = 3;
+
 namespace hal {
 
-void begin() {}
+void begin() { bus_in.fd = hal_linux_bus_fd; }
 
 uint32_t millis() {
   struct timespec ts;
@@ -76,15 +79,15 @@ int link_read() {
 void link_write(const uint8_t *data, uint16_t n) { write_all(kLinkOut, data, n); }
 
 int bus_read() {
-  if (bus_in.pos >= bus_in.len && !readable(kBus)) return -1;
+  if (bus_in.pos >= bus_in.len && !readable(bus_in.fd)) return -1;
   return next_byte(bus_in);
 }
 
-void bus_write(const uint8_t *data, uint16_t n) { write_all(kBus, data, n); }
+void bus_write(const uint8_t *data, uint16_t n) { write_all(bus_in.fd, data, n); }
 
 void idle() {
   // Sleep until input arrives or 1 ms passes: the timers need ms resolution.
-  struct pollfd p[2] = {{kLinkIn, POLLIN, 0}, {kBus, POLLIN, 0}};
+  struct pollfd p[2] = {{kLinkIn, POLLIN, 0}, {bus_in.fd, POLLIN, 0}};
   poll(p, 2, 1);
 }
 

@@ -1,15 +1,20 @@
 // Native firmware for firmware-in-the-loop: the same PirateBay object the
 // Mega runs, over hal_linux.cpp. Prints its counters to stderr on SIGTERM.
+// Usage: pirate_bay_native [BUS_FD]   (link on stdin/stdout; bus fd default 3)
 #include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "pirate_bay.h"
+
+extern int hal_linux_bus_fd;
 
 static volatile sig_atomic_t stop_requested = 0;
 
 static void on_signal(int) { stop_requested = 1; }
 
-int main() {
+int main(int argc, char **argv) {
+  if (argc > 1) hal_linux_bus_fd = atoi(argv[1]);
   signal(SIGTERM, on_signal);
   signal(SIGINT, on_signal);
   signal(SIGPIPE, SIG_IGN);

@@ -31,13 +31,13 @@ passed in, so every rule is unit-tested without ROS.
 import threading
 
 from pirate import safety, tables
+from pirate.hold import safe_hold
 from pirate.panel import config as panel_config
 from pirate.panel.config import MANUAL, PAB
 
 #: The control-array index where play / stop / no-limits-all travel (SPEC 3).
 COMMAND_INDEX = tables.element('rear_module').index
 #: Modes in which a 0 setpoint means "motor off", zeroed by Stop.
-_ZERO_ON_STOP = ('pwm', 'velocity')
 
 
 class Mapper(object):
@@ -244,11 +244,8 @@ class Mapper(object):
     # --- outputs ---------------------------------------------------------------
 
     def safe_setpoints(self):
-        """Zero PWM / velocity setpoints and send the array now (Stop)."""
-        for elem in tables.SETPOINT_ELEMENTS:
-            if self._control.mode_of(elem.name) in _ZERO_ON_STOP:
-                self._setpoint.set(elem.name, 0)
-        self._setpoint.publish_now()
+        """The safe hold (pirate.hold), sent at once (Stop)."""
+        safe_hold(self._setpoint, self._control)
 
     def _send_code(self, index, code):
         """Write a command code; send it again if it was already there."""

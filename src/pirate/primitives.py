@@ -7,7 +7,7 @@ a timeout and an immediate stop on cancel. Guards and setpoints come from
 enforced inside the Setpoint/Control classes. Pure Python.
 """
 from pirate import safety, units
-from pirate.guards import CLAMP_BENDS
+from pirate.hold import safe_hold
 
 
 class Refused(ValueError):
@@ -59,10 +59,15 @@ class MotionPrimitives(object):
         self.setpoint.set('wheels', units.mm_s_to_wheel_counts(mm_s))
 
     # --- advanced ---------------------------------------------------------
-    def _wait(self, name, guard, text):
+    def wait_for(self, name, guard, text, timeout=None):
+        """Run primitive ``name``: announce it, wait for ``guard``, announce the end.
+
+        ``timeout`` defaults to the configured primitive timeout (robot time).
+        """
         self.executed.append(name)
         self.notify(name, text)
-        view = self.feed.wait_until(guard, self.guards.primitive_timeout, '%s: %s' % (name, text))
+        view = self.feed.wait_until(guard, timeout or self.guards.primitive_timeout,
+                                    '%s: %s' % (name, text))
         self.notify('', '%s reached %s' % (name, text))
         return view
 
@@ -76,7 +81,7 @@ class MotionPrimitives(object):
         for bend in (pair.outer, pair.inner):
             self.control.set_mode(bend.joint, 'torque')
             self.setpoint.set(bend.joint, bend.setpoint)
-        self._wait(clamp_name(kind, part),
+        self.wait_for(clamp_name(kind, part),
                    lambda v: (v.angles[pair.outer.joint] <= pair.outer.guard
                               and v.angles[pair.inner.joint] >= pair.inner.guard),
                    '%s <= %.2f and %s >= %.2f' % (pair.outer.joint, pair.outer.guard,
@@ -89,7 +94,7 @@ class MotionPrimitives(object):
         for bend in (pair.outer, pair.inner):
             self.control.set_mode(bend.joint, 'torque')
             self.setpoint.set(bend.joint, bend.setpoint)
-        self._wait('unclamp %s%s' % (part, ' partial' if partial else ''),
+        self.wait_for('unclamp %s%s' % (part, ' partial' if partial else ''),
                    lambda v: (v.angles[pair.outer.joint] >= pair.outer.guard
                               and v.angles[pair.inner.joint] <= pair.inner.guard),
                    '%s >= %.2f and %s <= %.2f' % (pair.outer.joint, pair.outer.guard,
@@ -106,7 +111,7 @@ class MotionPrimitives(object):
         tolerance = self.guards.rotate_tolerance
         self.control.set_mode('rotation', 'position')
         self.setpoint.set('rotation', units.rad_to_rotation(target_rad))
-        self._wait(name, lambda v: abs(v.angles['rotation'] - target_rad) <= tolerance,
+        self.wait_for(name, lambda v: abs(v.angles['rotation'] - target_rad) <= tolerance,
                    '|rotation - %.3f| <= %.4f' % (target_rad, tolerance))
 
     def align(self):
@@ -123,30 +128,12 @@ class MotionPrimitives(object):
         else:
             guard, text = (lambda v: v.angles['front_tilt'] <= move.guard), 'front_tilt <= %.3f' % move.guard
         try:
-            self._wait(kind.replace('_', ' '), guard, text)
+            self.wait_for(kind.replace('_', ' '), guard, text)
         finally:
             self.setpoint.set('front_tilt', 0)
 
     # --- safety -----------------------------------------------------------
     def safe_hold(self):
-        """The one safe state: no motor moves; sent at once, past the pacing.
-
-        Bends, front module and wheels get 0 in PWM/torque/velocity (no drive;
-        the worm gears hold); the rotation, in position mode, gets its current
-        angle so it stays where it is instead of aligning.
-        """
-        for joint in CLAMP_BENDS['front'] + CLAMP_BENDS['rear'] + ('front_tilt', 'wheels'):
-            if self.control.mode_of(joint) == 'position':
-                self.setpoint.set(joint, self._current_counts(joint))
-            else:
-                self.setpoint.set(joint, 0)
-        if self.control.mode_of('rotation') == 'position':
-            self.setpoint.set('rotation', self._current_counts('rotation'))
-        return self.setpoint.publish_now()
-
-    def _current_counts(self, joint):
+        """The safe hold of :mod:`pirate.hold`, with the newest joint angles."""
         view = self.feed.latest()
-        angle = view.angles[joint] if view is not None else 0.0
-        if joint == 'rotation':
-            return units.rad_to_rotation(max(-safety.ROTATION_MAX_RAD, min(safety.ROTATION_MAX_RAD, angle)))
-        return units.rad_to_encoder(angle)
+        return safe_hold(self.setpoint, self.control, view.angles if view else None)

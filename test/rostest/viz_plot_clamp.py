@@ -13,8 +13,11 @@ import subprocess
 import time
 import unittest
 
+from xmlrpc.client import ServerProxy
+
 import actionlib
 import rosgraph
+import rosnode
 import rospkg
 import rospy
 import rostest
@@ -32,10 +35,24 @@ SIMPLE_CLAMP_STRAIGHT = ['move front', 'clamp rear', 'clamp front']
 FEEDBACK_TOPIC = names.PIRATE_ACTION + '/feedback'
 
 
-def _subscribed(node, topic):
-    """True once ``node`` subscribes ``topic`` (asked of the master)."""
-    _, subscribers, _ = rosgraph.Master('/viz_plot_clamp').getSystemState()
-    return any(t == topic and node in nodes for t, nodes in subscribers)
+RECORDER = '/record_run'
+#: The recorder must be connected to these before the goal goes out, or the
+#: first feedback (and the goal itself) is lost to the connection race.
+RECORDED = (names.ROBOT_STATE_TOPIC, FEEDBACK_TOPIC, names.PIRATE_ACTION + '/goal')
+
+
+def _recorder_connected(topics):
+    """True once the recorder has a live inbound connection on every topic."""
+    try:
+        uri = rosnode.get_api_uri(rosgraph.Master('/viz_plot_clamp'), RECORDER, skip_cache=True)
+        if not uri:
+            return False
+        _, _, bus = ServerProxy(uri).getBusInfo('/viz_plot_clamp')
+    except (OSError, rosnode.ROSNodeIOException):
+        return False
+    # getBusInfo rows: [id, peer, direction, transport, topic, connected]
+    live = {row[4] for row in bus if row[2] == 'i' and (len(row) < 6 or row[5])}
+    return set(topics) <= live
 
 
 class VizPlotClampTest(unittest.TestCase):
@@ -48,13 +65,13 @@ class VizPlotClampTest(unittest.TestCase):
         recorder = subprocess.Popen(['roslaunch', 'pirate', 'record.launch', 'bag:=' + BAG],
                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         try:
-            deadline = time.monotonic() + 60
-            while not _subscribed('/record_run', FEEDBACK_TOPIC):
-                self.assertLess(time.monotonic(), deadline, 'record_run never subscribed')
-                self.assertIsNone(recorder.poll(), 'record.launch exited')
-                time.sleep(0.2)   # poll interval of the master query
             client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
             self.assertTrue(client.wait_for_server(rospy.Duration(60)), 'no Pirate Server')
+            deadline = time.monotonic() + 60
+            while not _recorder_connected(RECORDED):
+                self.assertLess(time.monotonic(), deadline, 'recorder never connected')
+                self.assertIsNone(recorder.poll(), 'record.launch exited')
+                time.sleep(0.2)   # poll interval of the node query
             client.send_goal(PirateGoal(name=PirateGoal.CLAMP_STRAIGHT, pipe_diameter=90))
             self.assertTrue(client.wait_for_result(rospy.Duration(120)), 'no result')
             self.assertTrue(client.get_result().success, client.get_result().message)

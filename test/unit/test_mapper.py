@@ -162,7 +162,7 @@ def test_m_button_sends_single_stop_at_the_joint_index(rig):
     assert rig.control.get(tables.element('bend_i').index) == safety.COMMAND_CODES['single_stop']
 
 
-def test_stop_zeroes_pwm_keeps_torque_and_position(rig):
+def test_stop_puts_the_robot_in_the_safe_hold(rig):
     rig.play()
     rig.press(S_BEND_I)                       # bend I in torque mode
     rig.mapper.handle(SLIDER_BEND_I, 127)     # clamping torque
@@ -175,8 +175,9 @@ def test_stop_zeroes_pwm_keeps_torque_and_position(rig):
     assert len(rig.setpoint_pub.messages) == sent + 1   # sent at once, not at the next tick
     last = rig.setpoint_pub.messages[-1]
     assert last[tables.element('bend_ii').index] == 0
-    assert last[tables.element('bend_i').index] == 256
-    assert last[tables.element('camera_tilt').index] == 7 * 43
+    assert last[tables.element('bend_i').index] == 0    # zeroed before its mode changed
+    assert rig.control.mode_of('bend_i') == 'pwm'       # PWM 0: the worm gear holds
+    assert last[tables.element('camera_tilt').index] == 7 * 43   # the operator's camera
     assert not rig.setpoint.enabled
 
 
@@ -213,14 +214,14 @@ def test_pab_mode_ignores_joint_controls_but_not_camera(rig):
 
 def test_operation_mode_switch_keeps_setpoints(rig):
     rig.play()
-    rig.press(S_BEND_I)
-    rig.mapper.handle(SLIDER_BEND_I, 127)   # torque, kept over Stop
+    rig.press(S_CAMERA_TILT)
+    rig.mapper.handle(SLIDER_CAMERA_TILT, 20)   # camera position, kept over Stop
     rig.press(STOP)
     before = rig.setpoint.get_all()
     rig.press(REWIND)
     rig.play()
     assert rig.setpoint.get_all() == before
-    assert rig.setpoint.get('bend_i') == 256
+    assert rig.setpoint.get('camera_tilt') == 7 * 43
 
 
 def test_play_after_mode_switch_sends_no_motion(rig):

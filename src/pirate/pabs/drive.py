@@ -59,26 +59,24 @@ class Drive(Pab):
         if math.isnan(view.odometry):
             self.method = 'time (eq 5.3)'
             end = view.stamp + 2.0 * abs(distance) / abs(speed)
-            ctx.prims.executed.append('drive by time')
-            ctx.feed.wait_until(lambda v: v.stamp >= end, timeout, 'drive by time')
+            ctx.prims.wait_for('drive by time', lambda v: v.stamp >= end,
+                               'robot time %.1f s (eq 5.3)' % (end - view.stamp), timeout)
             return
         settings = ctx.guards.drive
         creep = math.copysign(min(settings['creep_speed'], abs(speed)), distance)
-        ctx.prims.executed.append('drive')
-        ctx.report(DRIVING, 'odometry %+.0f mm' % distance)
-        self._drive_until(ctx, abs(distance) - abs(speed) * settings['creep_lead'], timeout)
+        self._drive_until(ctx, 'drive', abs(distance) - abs(speed) * settings['creep_lead'], timeout)
         ctx.prims.drive_at_velocity(creep)
-        self._drive_until(ctx, abs(distance) - abs(creep) * settings['stop_lead'], timeout)
+        self._drive_until(ctx, 'drive creep', abs(distance) - abs(creep) * settings['stop_lead'], timeout)
 
-    def _drive_until(self, ctx, covered_mm, timeout):
+    def _drive_until(self, ctx, name, covered_mm, timeout):
         """Wait until the odometry has covered ``covered_mm`` from the start."""
-        ctx.feed.wait_until(lambda v: abs(v.odometry - self.start_mm) >= covered_mm, timeout,
-                            'odometry covers %.1f mm' % covered_mm)
+        ctx.prims.wait_for(name, lambda v: abs(v.odometry - self.start_mm) >= covered_mm,
+                           '|odometry - start| >= %.1f mm' % covered_mm, timeout)
 
     def _stop(self, ctx):
         ctx.prims.drive_at_velocity(0.0)
-        ctx.feed.wait_until(lambda v: abs(v.velocity) < STANDSTILL_MM_S,
-                            ctx.guards.primitive_timeout, 'wheels standing still')
+        ctx.prims.wait_for('stop wheels', lambda v: abs(v.velocity) < STANDSTILL_MM_S,
+                           '|velocity| < %.0f mm/s' % STANDSTILL_MM_S)
         if self.method == 'odometry':
             driven = ctx.feed.latest().odometry - self.start_mm
             error = abs(driven - ctx.goal.distance)

@@ -147,10 +147,23 @@ def panels(run, guards=None):
     return drawn
 
 
+KEY_COLUMNS = 3   # columns of the "tN  time  primitive" key under the plots
+
+
 def render(drawn, markers, path, title=None):
-    """Draw ``drawn`` panels and the primitive ``markers`` to a PNG at ``path``."""
-    fig, axes = plt.subplots(len(drawn), 1, sharex=True, figsize=(12, 2.1 * len(drawn) + 1.5))
-    for ax, panel in zip(axes, drawn):
+    """Draw ``drawn`` panels and the primitive ``markers`` to a PNG at ``path``.
+
+    As in the report, each transition is a vertical line labelled tN; the
+    key under the panels names the primitive of each tN (Tables 6.1-6.4).
+    """
+    key_rows = max(1, math.ceil(len(markers) / KEY_COLUMNS))
+    fig = plt.figure(figsize=(12, 2.1 * len(drawn) + 1.5 + 0.2 * key_rows))
+    grid = fig.add_gridspec(len(drawn) + 1, 1,
+                            height_ratios=[2.1] * len(drawn) + [0.2 * key_rows + 0.3])
+    axes = []
+    for row, panel in enumerate(drawn):
+        ax = fig.add_subplot(grid[row], sharex=axes[0] if axes else None)
+        axes.append(ax)
         for label, times, values in panel.series:
             ax.plot(times, values, label=label, linewidth=1.2)
         for low, high in panel.bands:
@@ -168,13 +181,22 @@ def render(drawn, markers, path, title=None):
         ax.grid(True, alpha=0.3)
         if panel.series:
             ax.legend(fontsize=7, loc='upper left', bbox_to_anchor=(1.01, 1.0))
-    top = axes[0]
-    for i, (t, primitive) in enumerate(markers, 1):
-        top.annotate('t%d %s' % (i, primitive), (t, 1.0), xycoords=('data', 'axes fraction'),
-                     rotation=60, fontsize=7, ha='left', va='bottom')
+        if row < len(drawn) - 1:
+            ax.tick_params(labelbottom=False)
+    for i, (t, _) in enumerate(markers, 1):
+        # Two label heights, so neighbouring transitions stay readable.
+        axes[0].annotate('t%d' % i, (t, 1.02 + 0.1 * (i % 2)),
+                         xycoords=('data', 'axes fraction'), fontsize=7, ha='center')
     axes[-1].set_xlabel('time [s]')
+    key = fig.add_subplot(grid[len(drawn)])
+    key.axis('off')
+    for i, (t, primitive) in enumerate(markers):
+        column, row = divmod(i, key_rows)
+        key.text(column / KEY_COLUMNS, 1.0 - (row + 0.5) / key_rows,
+                 't%d  %6.2f s  %s' % (i + 1, t, primitive), fontsize=8, va='center',
+                 family='monospace', transform=key.transAxes)
     if title:
-        fig.suptitle(title, fontsize=10, y=0.995)
+        fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
