@@ -13,16 +13,20 @@ export PYTHONDONTWRITEBYTECODE := 1
 WS ?= $(CURDIR)/.ws
 ENV := source $(WS)/devel/setup.bash &&
 
-.PHONY: deps build demo test test-unit test-rostest test-firmware lint bench clean
+.PHONY: deps link-package build demo test test-unit test-rostest test-firmware lint bench clean
 
 deps:
 	@bash scripts/ensure_deps
 
-$(WS)/src/pirate:
-	@mkdir -p $(WS)/src
-	@ln -sfn $(CURDIR) $(WS)/src/pirate
+# The package in the workspace is a folder of links to the repo's top-level
+# entries, not a link to the repo itself: the repo holds the workspace, and a
+# link to it would make a loop that rosrun/find walk into.
+link-package:
+	@pkg=$(WS)/src/pirate; [ -L "$$pkg" ] && rm "$$pkg"; mkdir -p "$$pkg"; \
+	  for f in $(CURDIR)/*; do ln -sfn "$$f" "$$pkg/$$(basename "$$f")"; done; \
+	  for l in "$$pkg"/*; do [ -e "$$l" ] || rm -f "$$l"; done
 
-build: deps $(WS)/src/pirate
+build: deps link-package
 	@catkin_make -C $(WS) -DCATKIN_ENABLE_TESTING=1 -DPYTHON_EXECUTABLE=/usr/bin/python3 \
 	  > $(WS)/build.log 2>&1 || { tail -40 $(WS)/build.log; exit 1; }
 	@echo "built workspace $(WS)"
@@ -40,10 +44,10 @@ test-rostest: build
 	@$(ENV) bash scripts/run_rostests
 
 lint: build
-	@$(ENV) catkin_lint -W2 --strict .
+	@$(ENV) catkin_lint -W2 --strict --ignore package_path_name $(CURDIR)
 
 bench: build
-	@$(ENV) for b in bench/*; do [ -x "$$b" ] && "$$b"; done
+	@$(ENV) for b in bench/*; do python3 "$$b" || exit 1; done
 
 clean:
 	rm -rf $(WS) test-results

@@ -90,6 +90,7 @@ void Bridge::poll(uint32_t now) {
   if (armed_ && (uint32_t)(now - last_setpoint_ms_) > WATCHDOG_MS) {
     ++counters.watchdog_trips;
     disarm();
+    if (ros_) ros_->drop_configuration(now);
   }
   if (waiting_ && (uint32_t)(now - request_ms_) > PIRATE_BUS_REPLY_TIMEOUT_MS) {
     ++counters.bus_timeouts;

@@ -6,6 +6,9 @@
 //   setpoint array arrives after the handshake ("armed");
 // - no setpoint array for WATCHDOG_MS, or the link lost: disarm and send
 //   every board STOP at once (a broadcast), then STOP in every refresh;
+//   a watchdog trip also drops the rosserial handshake, so nothing the
+//   link buffered during an outage (stale setpoints) is ever applied: only
+//   a setpoint after a new handshake re-arms;
 // - every array is length-checked, every control code range-checked; a bad
 //   message is dropped whole and counted, the previous values stay.
 #ifndef PIRATE_BRIDGE_H

@@ -5,7 +5,8 @@
 // one TopicInfo per topic and a time request (topic 10, empty); the host's
 // time reply completes the handshake ("configured"). Every SYNC_PERIOD_MS we
 // ask for the time again; no valid frame from the host for LINK_TIMEOUT_MS,
-// a TX_STOP, or a new topic request drops the configuration.
+// a TX_STOP, a new topic request, or the bridge's watchdog drops the
+// configuration. Unconfigured, we publish nothing and ignore every command.
 #ifndef PIRATE_ROSSERIAL_DEVICE_H
 #define PIRATE_ROSSERIAL_DEVICE_H
 
@@ -41,6 +42,10 @@ class RosserialDevice {
   void feed(uint8_t byte, uint32_t now);
   void poll(uint32_t now);
   bool configured() const { return configured_; }
+  // Forget the handshake (the bridge's watchdog tripped): stop publishing
+  // and ignore commands until the host negotiates again. Our host notices
+  // the silence and renegotiates within its sync timeout.
+  void drop_configuration(uint32_t now) { unconfigure(now); }
   // Send one frame; false if not configured or the payload does not fit.
   bool publish(uint16_t topic, const uint8_t *payload, uint16_t len);
   RosCounters counters;

@@ -170,9 +170,15 @@ static void test_watchdog_stops_every_board() {
   CHECK(stop_at - last >= WATCHDOG_MS);
   CHECK(r.boards.count(BUS_SET, stop_at) == 0);
   CHECK(r.bay.bridge.counters.watchdog_trips == 1);
-  r.setpoints(kSetpoints);  // a fresh setpoint re-arms
+  CHECK(!r.bay.ros.configured());  // the trip drops the handshake
+  r.setpoints(kSetpoints);         // buffered during the outage: ignored
   r.run(110);
-  CHECK(r.boards.count(BUS_SET, stop_at + 1) >= 9);
+  CHECK(r.boards.count(BUS_SET, stop_at + 1) == 0);
+  uint32_t rearm = fake::now_ms;
+  r.handshake();
+  r.setpoints(kSetpoints);         // after a new handshake: re-arms
+  r.run(110);
+  CHECK(r.boards.count(BUS_SET, rearm) >= 9);
 }
 
 static void test_corrupt_and_malformed_frames_change_nothing() {
@@ -222,7 +228,18 @@ static void test_tx_stop_and_silence_disarm() {
   CHECK(!r.bay.ros.configured());
 }
 
+static void test_bus_crc_and_layout_match_python() {
+  // CRC-8/SMBUS check value, as test/unit/test_firmware_bus.py asserts for Python.
+  CHECK(bus_crc8((const uint8_t *)"123456789", 9) == 0xF4);
+  uint8_t f[BUS_MAX_FRAME];
+  uint8_t n = bus_encode_set(f, sizeof f, 23, 7, 3, 1, -256, -50, 200);
+  const uint8_t expect[13] = {0xA5, 23, 0x01, 7, 8, 3, 1, 0x00, 0xFF, 0xCE, 0xFF, 200, 0};
+  CHECK(n == 14 && memcmp(f, expect, 13) == 0 && f[13] == bus_crc8(f + 1, 12));
+  CHECK(bus_encode_set(f, 10, 23, 7, 3, 1, 0, 0, 0) == 0);  // does not fit: refused
+}
+
 int main() {
+  test_bus_crc_and_layout_match_python();
   test_power_up_never_moves();
   test_handshake_announces_topics_with_our_md5();
   test_setpoints_reach_boards_with_wheel_signs();

@@ -15,7 +15,7 @@ from actionlib_msgs.msg import GoalStatus
 
 from pirate import names
 from pirate.mission import MissionError, MissionRunner, load_mission
-from pirate.msg import PirateAction, PirateGoal
+from pirate.msg import PirateAction, PirateGoal, RobotState
 
 STATUS = {GoalStatus.SUCCEEDED: 'succeeded', GoalStatus.ABORTED: 'aborted',
           GoalStatus.PREEMPTED: 'preempted', GoalStatus.REJECTED: 'rejected',
@@ -35,9 +35,15 @@ class ActionGoalRunner(object):
         self._client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
         self._timeout = timeout_s
 
-    def connect(self):
-        """Wait for the Pirate Server; False if it does not come up."""
-        return self._client.wait_for_server(rospy.Duration(self._timeout))
+    def connect(self, wall_timeout=30.0):
+        """Wait for the Pirate Server and a fresh robot state; the reason if not."""
+        if not self._client.wait_for_server(rospy.Duration(self._timeout)):
+            return 'no Pirate Server at %s' % names.PIRATE_ACTION
+        try:
+            rospy.wait_for_message(names.ROBOT_STATE_TOPIC, RobotState, wall_timeout)
+        except rospy.ROSException:
+            return 'no robot state on %s within %.0f s' % (names.ROBOT_STATE_TOPIC, wall_timeout)
+        return None
 
     def __call__(self, step, on_feedback):
         goal = PirateGoal(name=step.code, pipe_diameter=step.pipe_diameter, distance=step.distance,
@@ -62,8 +68,9 @@ def main(argv=None):
         print('run_mission: %s' % error, file=sys.stderr)
         return 2
     runner = ActionGoalRunner(args.timeout)
-    if not runner.connect():
-        print('run_mission: no Pirate Server at %s' % names.PIRATE_ACTION, file=sys.stderr)
+    problem = runner.connect()
+    if problem:
+        print('run_mission: %s' % problem, file=sys.stderr)
         return 2
     clocks = lambda: (rospy.get_time(), time.monotonic())  # noqa: E731
     results = MissionRunner(runner, clocks, out=lambda line: print(line, flush=True)).run(mission)

@@ -1,7 +1,8 @@
 """Drive (report 4.7.4.2.2, 5.12): drive a signed distance while clamped.
 
 By odometry, as the report recommends: drive at the goal's speed until the
-remaining distance is what the robot covers in ``creep_lead`` s, creep the
+remaining distance is what the robot covers in ``creep_lead`` s (a shorter
+drive creeps all the way), creep the
 rest at ``creep_speed`` (so the latency of state and setpoints, 0.1 s each,
 costs millimetres, not centimetres), stop ``stop_lead`` s early and wait
 until the wheels stand still. Only when the robot
@@ -64,7 +65,9 @@ class Drive(Pab):
             return
         settings = ctx.guards.drive
         creep = math.copysign(min(settings['creep_speed'], abs(speed)), distance)
-        self._drive_until(ctx, 'drive', abs(distance) - abs(speed) * settings['creep_lead'], timeout)
+        fast_mm = abs(distance) - abs(speed) * settings['creep_lead']
+        if fast_mm > 0:
+            self._drive_until(ctx, 'drive', fast_mm, timeout)
         ctx.prims.drive_at_velocity(creep)
         self._drive_until(ctx, 'drive creep', abs(distance) - abs(creep) * settings['stop_lead'], timeout)
 

@@ -7,9 +7,14 @@ rate, 57600), ``~pipe_diameter`` (mm), ``~orientation`` (rad),
 ``~seed`` (sensor noise, -1 none), ``~firmware`` (path of
 pirate_bay_native; empty: build it with firmware/Makefile).
 FIL runs in wall time (the firmware has its own clock): no /clock.
+
+Faults for tests, on ``~fault`` (std_msgs/String): ``unplug`` (the pty
+closes), ``replug`` (a new pty, the Mega resets), ``stall SECONDS``
+(nothing crosses the link). Anything else is refused with a logged reason.
 """
 import rospy
 import rospkg
+from std_msgs.msg import String
 
 from pirate.rosserial.fil import FirmwareInTheLoop, build_native_firmware
 from pirate.sim.model import PirateModel
@@ -32,5 +37,28 @@ def main():
                             baud=int(rospy.get_param('~baud', 57600)), record=False)
     fil.start()
     rospy.on_shutdown(fil.stop)
+    rospy.Subscriber('~fault', String, lambda msg: inject(fil, msg.data), queue_size=5)
     rospy.loginfo('firmware in the loop: %s on %s', firmware, fil.link_path)
     rospy.spin()
+
+
+def inject(fil, text):
+    """Carry out one fault command (see module docstring)."""
+    words = text.split()
+    if words == ['unplug']:
+        fil.unplug()
+    elif words == ['replug']:
+        fil.replug()
+    elif len(words) == 2 and words[0] == 'stall':
+        try:
+            seconds = float(words[1])
+        except ValueError:
+            seconds = -1.0
+        if not 0 < seconds <= 60:
+            rospy.logerr('fil_robot: stall needs 0 < seconds <= 60, got %r', words[1])
+            return
+        fil.stall(seconds)
+    else:
+        rospy.logerr('fil_robot: unknown fault %r (unplug | replug | stall SECONDS)', text)
+        return
+    rospy.logwarn('fil_robot: fault injected: %s', text)

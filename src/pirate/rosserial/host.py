@@ -8,8 +8,9 @@ Two threads around the pure parts:
   create publishers/subscribers, publish device messages;
 - the *writer* sends what ROS subscribers left in the :class:`~.outbox.Outbox`
   (latest value per topic, at most ``max_age`` old), only while the session
-  is up, and holds back while the device is silent (a stalled link), then
-  discards anything the port still buffered before sending again.
+  is up. When the link goes down (silence, unplug) queued values and unsent
+  port bytes are discarded; the firmware, for its part, ignores anything
+  that reaches it after its watchdog tripped until a new handshake.
 
 Diagnostics (diagnostic_msgs/DiagnosticArray on /diagnostics) at 1 Hz.
 """
@@ -33,13 +34,11 @@ _LOG = {'debug': rospy.logdebug, 'info': rospy.loginfo, 'warn': rospy.logwarn,
 class RosserialHost(object):
     """One device on one port. ``params``: see :func:`from_params`."""
 
-    def __init__(self, port, baud, sync_timeout=3.0, max_age=0.2, stall_timeout=0.25,
-                 clock=time.monotonic):
+    def __init__(self, port, baud, sync_timeout=0.5, max_age=0.2, clock=time.monotonic):
         self.link = SerialLink(port, baud)
         self.parser = FrameParser()
         self.session = sessions.HostSession(sync_timeout=sync_timeout)
         self.outbox = Outbox(max_age=max_age)
-        self.stall_timeout = stall_timeout
         self._clock = clock
         self._lock = threading.RLock()        # session + per-topic tables
         self._stop = threading.Event()
@@ -47,10 +46,8 @@ class RosserialHost(object):
         self._subscribers = {}                # topic name -> rospy.Subscriber
         self._device_pub = {}                 # device topic id -> topic name
         self._logged = {}
-        self._last_rx = 0.0
-        self._stalled = False
         self.counts = dict(frames_out=0, link_ups=0, link_downs=0, deserialize_errors=0,
-                           stalls=0, not_up_dropped=0)
+                           not_up_dropped=0)
         self._diag_pub = rospy.Publisher('/diagnostics', DiagnosticArray, queue_size=2)
         self._threads = [threading.Thread(target=self._read_loop, name='rosserial-reader'),
                          threading.Thread(target=self._write_loop, name='rosserial-writer')]
@@ -59,15 +56,14 @@ class RosserialHost(object):
     def from_params(cls):
         """Build from private params: ``~port`` (default /dev/ttyACM0), ``~baud``
         (57600, rosserial's default; 115200 supported), ``~sync_timeout`` (s of
-        device silence before renegotiating, 3.0), ``~max_age`` (s, oldest
-        command ever sent, 0.2), ``~stall_timeout`` (s of device silence after
-        which commands are held back, 0.25; 0 disables, for devices that do
-        not stream)."""
+        device silence before the link counts as lost and topics are
+        requested again; 0.5 suits the Pirate Bay, which streams Small State
+        every 100 ms; use about 6 for a device that publishes nothing and
+        only syncs time), ``~max_age`` (s, oldest command ever sent, 0.2)."""
         return cls(rospy.get_param('~port', '/dev/ttyACM0'),
                    int(rospy.get_param('~baud', 57600)),
-                   float(rospy.get_param('~sync_timeout', 3.0)),
-                   float(rospy.get_param('~max_age', 0.2)),
-                   float(rospy.get_param('~stall_timeout', 0.25)))
+                   float(rospy.get_param('~sync_timeout', 0.5)),
+                   float(rospy.get_param('~max_age', 0.2)))
 
     # -- lifecycle -----------------------------------------------------------
     def start(self):
@@ -112,8 +108,6 @@ class RosserialHost(object):
                     self._warn('port lost (%s); reopening' % self.link.last_error)
                     self._handle(self.session.closed())
                     continue
-                if data:
-                    self._last_rx = now
                 for frame in self.parser.feed(data):
                     reply, events = self.session.on_frame(frame, now, rospy.get_time())
                     self.link.write(reply)
@@ -130,8 +124,7 @@ class RosserialHost(object):
                       self.link.baud)
         with self._lock:
             self.parser.reset()
-            self._last_rx = self._clock()
-            self.link.write(self.session.opened(self._last_rx))
+            self.link.write(self.session.opened(self._clock()))
         return True
 
     def _handle(self, events):
@@ -143,8 +136,11 @@ class RosserialHost(object):
         if state == sessions.UP:
             self.counts['link_ups'] += 1
         else:
+            # Nothing from before may reach the device: drop queued values and
+            # whatever the port has not sent yet.
             self.counts['link_downs'] += 1
             self.outbox.clear()
+            self.link.discard_output()
 
     def _on_error(self, text):
         self._warn(text)
@@ -214,22 +210,9 @@ class RosserialHost(object):
             now = self._clock()
             with self._lock:
                 up = self.session.state == sessions.UP and self.link.is_open
-                silent = now - self._last_rx
             if not up:
                 self.counts['not_up_dropped'] += len(self.outbox.take(now))
                 continue
-            if self.stall_timeout and silent > self.stall_timeout:
-                # The device went quiet: hold; take() drops what aged meanwhile.
-                if not self._stalled:
-                    self._stalled = True
-                    self.counts['stalls'] += 1
-                    self._warn('device silent for %.2f s: holding commands' % silent)
-                self._stop.wait(0.01)
-                continue
-            if self._stalled:
-                # Anything the port buffered before the stall is stale now.
-                self.link.discard_output()
-                self._stalled = False
             for name, payload in self.outbox.take(now):
                 with self._lock:
                     topic_id = self.session.subscriber_id(name)

@@ -1,0 +1,82 @@
+#!/usr/bin/env python3
+"""Clamp Straight through the firmware-in-the-loop chain (issue 5).
+
+1. The simple clamp straight (upright start, 90 mm) succeeds end to end
+   through serial_node <-> pty <-> native firmware <-> simulated boards.
+2. Unplug mid-PAB: the PAB aborts (the state stops flowing), the firmware
+   stops every motor on its own; after replugging (the Mega resets) the
+   link comes back and the next goal succeeds.
+"""
+import time
+import unittest
+
+import actionlib
+import rospy
+import rostest
+from std_msgs.msg import String
+
+from pirate import names
+from pirate.msg import PirateAction, PirateFeedback, PirateGoal, RobotState
+
+FAULT_TOPIC = '/fil_robot/fault'
+
+
+class FilClampTest(unittest.TestCase):
+
+    def setUp(self):
+        self.client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
+        self.assertTrue(self.client.wait_for_server(rospy.Duration(60)), 'no Pirate Server')
+        self.fault = rospy.Publisher(FAULT_TOPIC, String, queue_size=5)
+        self.states = []
+        rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState,
+                         lambda m: self.states.append((time.monotonic(), m.stale)), queue_size=50)
+        deadline = time.monotonic() + 60
+        while not any(not stale for _, stale in self.states[-5:]):
+            self.assertLess(time.monotonic(), deadline, 'no fresh robot state through FIL')
+            time.sleep(0.1)
+        deadline = time.monotonic() + 10
+        while self.fault.get_num_connections() == 0:
+            self.assertLess(time.monotonic(), deadline, 'fil_robot not listening for faults')
+            time.sleep(0.1)
+
+    def _clamp(self, feedback=None):
+        self.client.send_goal(PirateGoal(name=PirateGoal.CLAMP_STRAIGHT, pipe_diameter=90),
+                              feedback_cb=feedback)
+
+    def test_1_clamp_straight_succeeds_through_fil(self):
+        self._clamp()
+        self.assertTrue(self.client.wait_for_result(rospy.Duration(120)), 'no result')
+        result = self.client.get_result()
+        self.assertTrue(result.success, result.message)
+
+    def test_2_unplug_mid_pab_aborts_then_next_goal_succeeds(self):
+        home = PirateGoal(name=PirateGoal.HOME, pipe_diameter=90)
+        self.client.send_goal(home)
+        self.assertTrue(self.client.wait_for_result(rospy.Duration(120)), 'home: no result')
+        primitives = []
+        self._clamp(lambda fb: primitives.append(fb.primitive))
+        deadline = time.monotonic() + 30
+        while not primitives:
+            self.assertLess(time.monotonic(), deadline, 'PAB never started')
+            time.sleep(0.05)
+        time.sleep(1.0)   # mid-PAB
+        self.fault.publish(String('unplug'))
+        self.assertTrue(self.client.wait_for_result(rospy.Duration(30)), 'no result after unplug')
+        self.assertFalse(self.client.get_result().success, 'PAB did not abort on unplug')
+        self.assertEqual(self.client.get_state(), actionlib.GoalStatus.ABORTED)
+        time.sleep(0.5)
+        self.fault.publish(String('replug'))
+        replugged = time.monotonic()
+        deadline = replugged + 30
+        while not any(t > replugged and not stale for t, stale in self.states):
+            self.assertLess(time.monotonic(), deadline, 'link did not come back')
+            time.sleep(0.1)
+        self._clamp()
+        self.assertTrue(self.client.wait_for_result(rospy.Duration(120)), 'no result')
+        result = self.client.get_result()
+        self.assertTrue(result.success, result.message)
+
+
+if __name__ == '__main__':
+    rospy.init_node('fil_clamp_test')
+    rostest.rosrun('pirate', 'fil_clamp_straight', FilClampTest)

@@ -1,0 +1,195 @@
+#!/usr/bin/env python3
+"""Firmware-in-the-loop link tests, measured on the simulated PICO bus.
+
+Each test builds the chain itself: FirmwareInTheLoop (native firmware +
+simulated boards) in this process, and serial_node as a child process on
+the pty, so the test can SIGKILL it. The laptop side is this test
+publishing setpoints at 10 Hz, as pirate.commands.Setpoint.tick does.
+
+- command loss: SIGKILL serial_node -> every board stopped within 300 ms of
+  the last setpoint that reached the firmware;
+- stall: the link passes nothing for 2 s, then recovers -> no board ever
+  applies a setpoint that the laptop had replaced more than 200 ms before;
+- unplug/replug: boards stop; after replug (a Mega reset) nothing moves
+  until a setpoint arrives after the new handshake, then motion resumes.
+"""
+import os
+import signal
+import struct
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import unittest
+
+import rospkg
+import rospy
+import rostest
+
+from pirate import names
+from pirate.msg import ControlArray, SetpointArray
+from pirate.rosserial.fil import FirmwareInTheLoop, build_native_firmware
+from pirate.sim.model import PirateModel
+
+SETPOINT_PAYLOAD = 2 * 13          # serialised SetpointArray: how the relay tells it apart
+BUDGET_S = 0.3
+MAX_AGE_S = 0.2
+BOARDS = 9
+
+
+def wait_for(condition, timeout, what):
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if condition():
+            return
+        time.sleep(0.01)
+    raise AssertionError('timed out after %.1f s waiting for %s' % (timeout, what))
+
+
+class Laptop(object):
+    """Publishes a counting setpoint (camera tilt element) at 10 Hz and
+    remembers when each value was published."""
+
+    def __init__(self):
+        self.pub = rospy.Publisher(names.SETPOINT_TOPIC, SetpointArray, queue_size=1)
+        self.control = rospy.Publisher(names.CONTROL_TOPIC, ControlArray, queue_size=1, latch=True)
+        self.published = []            # (time, value)
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run)
+        self._thread.daemon = True
+
+    def start(self):
+        codes = [0] * 12
+        codes[ControlArray.COMMAND_INDEX] = ControlArray.PLAY
+        self.control.publish(ControlArray(data=codes))
+        self._thread.start()
+
+    def _run(self):
+        value = 0
+        while not self._stop.is_set() and not rospy.is_shutdown():
+            value = value % 200 + 1
+            self.published.append((time.monotonic(), value))
+            self.pub.publish(SetpointArray(data=[value] + [0] * 12))
+            self._stop.wait(0.1)
+
+    def stop(self):
+        self._stop.set()
+        self._thread.join(1.0)
+
+
+class FilLinkTest(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        package = rospkg.RosPack().get_path('pirate')
+        cls.firmware = build_native_firmware(package)
+        cls.serial_node = os.path.join(package, 'nodes', 'serial_node')
+
+    def setUp(self):
+        self.link = os.path.join(tempfile.mkdtemp(prefix='pirate_fil_'), 'tty')
+        self.fil = FirmwareInTheLoop(self.firmware, PirateModel(), self.link)
+        self.fil.start()
+        self.host = self._spawn_host()
+        self.laptop = Laptop()
+
+    def tearDown(self):
+        self.laptop.stop()
+        if self.host.poll() is None:
+            self.host.send_signal(signal.SIGINT)
+            try:
+                self.host.wait(5)
+            except subprocess.TimeoutExpired:
+                self.host.kill()
+                self.host.wait()
+        self.fil.stop()
+
+    def _spawn_host(self):
+        return subprocess.Popen([sys.executable, self.serial_node,
+                                 '__name:=serial_node_%d' % os.getpid(), '_port:=' + self.link],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+    def _sets(self, board, since=0.0):
+        return [(t, c) for t, b, what, c in list(self.fil.boards.log)
+                if b == board and what == 'set' and t >= since]
+
+    def _setpoint_frames(self, since=0.0):
+        return [t for t, topic, payload in list(self.fil.host_frames)
+                if len(payload) == SETPOINT_PAYLOAD and t >= since]
+
+    def _moving(self, since=0.0):
+        return all(self._sets(20 + k, since) for k in range(BOARDS))
+
+    def test_sigkill_host_stops_every_board_within_budget(self):
+        self.laptop.start()
+        wait_for(self._moving, 20.0, 'all nine boards to get setpoints')
+        time.sleep(0.5)   # mid-motion: several refresh cycles with setpoints
+        self.host.send_signal(signal.SIGKILL)
+        self.host.wait()
+        killed = time.monotonic()
+        wait_for(lambda: self.fil.boards.all_stopped_since(killed - 0.5) is not None
+                 and time.monotonic() - killed > 0.6, 3.0, 'every board stopped')
+        last_setpoint = self._setpoint_frames()[-1]
+        stopped = self.fil.boards.all_stopped_since(last_setpoint)
+        self.assertIsNotNone(stopped)
+        delay = stopped - last_setpoint
+        print('SIGKILL: all boards safe %.0f ms after the last setpoint' % (delay * 1000))
+        self.assertLessEqual(delay, BUDGET_S)
+        self.assertEqual(self._sets(20, stopped + 1e-6), [], 'a board moved after the stop')
+
+    def test_stall_never_applies_a_stale_setpoint(self):
+        self.laptop.start()
+        wait_for(self._moving, 20.0, 'all nine boards to get setpoints')
+        time.sleep(1.0)
+        stall_start = time.monotonic()
+        self.fil.stall(2.0)
+        time.sleep(2.0)
+        wait_for(lambda: self._sets(20, stall_start + 2.0), 5.0, 'setpoints after the stall')
+        time.sleep(1.0)
+        self.laptop.stop()
+        stall_end = stall_start + 2.0
+        log = list(self.fil.boards.log)
+        for k in range(BOARDS):
+            stops = [t for t, b, what, _ in log
+                     if b == 20 + k and what == 'stop' and stall_start <= t <= stall_end]
+            self.assertTrue(stops and stops[0] - stall_start <= BUDGET_S,
+                            'board %d not stopped within budget in the stall' % (20 + k))
+            self.assertEqual(self._sets(20 + k, stall_start + BUDGET_S)[:1],
+                             self._sets(20 + k, stall_end)[:1],
+                             'board %d moved during the stall' % (20 + k))
+        published = list(self.laptop.published)
+        worst = 0.0
+        for applied_at, command in self._sets(20):
+            # the publication current when this value was last published before applied_at
+            pubs = [i for i, (t, v) in enumerate(published)
+                    if v == command.setpoint0 and t <= applied_at]
+            self.assertTrue(pubs, 'board applied %d, never published' % command.setpoint0)
+            i = pubs[-1]
+            if i + 1 < len(published) and published[i + 1][0] < applied_at:
+                age = applied_at - published[i + 1][0]
+                worst = max(worst, age)
+                self.assertLessEqual(age, MAX_AGE_S, 'value %d applied %.0f ms after the '
+                                     'laptop replaced it' % (command.setpoint0, age * 1000))
+        print('stall: worst setpoint staleness %.0f ms' % (worst * 1000))
+
+    def test_unplug_stops_and_replug_needs_a_fresh_setpoint(self):
+        self.laptop.start()
+        wait_for(self._moving, 20.0, 'all nine boards to get setpoints')
+        unplugged = time.monotonic()
+        self.fil.unplug()
+        wait_for(lambda: self.fil.boards.all_stopped_since(unplugged) is not None, 2.0,
+                 'boards stopped after unplug')
+        self.assertLessEqual(self.fil.boards.all_stopped_since(unplugged) - unplugged, BUDGET_S)
+        time.sleep(0.5)
+        replugged = time.monotonic()
+        self.fil.replug()
+        wait_for(lambda: self._moving(replugged), 20.0, 'motion after replug')
+        first_set = min(t for k in range(BOARDS) for t, _ in self._sets(20 + k, replugged))
+        first_setpoint = self._setpoint_frames(replugged)[0]
+        self.assertGreaterEqual(first_set, first_setpoint,
+                                'a board moved before a setpoint arrived after the reset')
+
+
+if __name__ == '__main__':
+    rospy.init_node('fil_link_test', anonymous=True)
+    rostest.rosrun('pirate', 'fil_link', FilLinkTest, sys.argv)

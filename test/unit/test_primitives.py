@@ -1,0 +1,285 @@
+"""Motion primitives (SPEC 7) over the real command arrays and a fake feed.
+
+The fake feed records which guard each advanced primitive waits on and
+checks it against hand-made states, so every test sees what went out before
+the wait, the guard itself, and what went out after it.
+"""
+import math
+
+import pytest
+
+from pirate import commands, safety, units
+from pirate.feed import Cancelled, RobotView, TimedOut
+from pirate.guards import GuardBook, load_files
+from pirate.primitives import MotionPrimitives, Refused
+
+JOINTS = ('front_tilt', 'bend_i', 'bend_ii', 'rotation', 'bend_iii', 'bend_iv')
+
+
+def view(**angles):
+    base = {name: 0.0 for name in JOINTS}
+    base.update(angles)
+    return RobotView(base, math.pi / 2, 0.0, 0.0, 1.0)
+
+
+class Wire(object):
+    def __init__(self):
+        self.sent = []
+
+    def publish(self, data):
+        self.sent.append(list(data))
+
+
+class FakeFeed(object):
+    """Stands in for RobotFeed: records waits, answers with scripted states.
+
+    ``outcome`` None: the wait returns the first of ``states`` its guard
+    accepts (AssertionError if none does, i.e. the guard is wrong); an
+    exception instance: the wait raises it.
+    """
+
+    def __init__(self, states=(), outcome=None):
+        self.states = list(states)
+        self.outcome = outcome
+        self.waits = []          # (describe, guard, timeout, setpoints at the time of the wait)
+        self.current = view()
+        self.arrays = None
+
+    def latest(self):
+        return self.current
+
+    def wait_until(self, guard, timeout, describe='guard'):
+        self.waits.append((describe, guard, timeout, self.arrays()))
+        if self.outcome is not None:
+            raise self.outcome
+        for state in self.states:
+            if guard(state):
+                return state
+        raise AssertionError('no scripted state satisfies %s' % describe)
+
+
+@pytest.fixture
+def rig():
+    wires = {k: Wire() for k in ('setpoint', 'control', 'limit')}
+    control = commands.Control(wires['control'], list)
+    setpoint = commands.Setpoint(wires['setpoint'], list, control)
+    limit = commands.Limit(wires['limit'], list)
+    feed = FakeFeed()
+    feed.arrays = setpoint.get_all
+    prims = MotionPrimitives(setpoint, control, limit, feed)
+    prims.use(GuardBook(*load_files()).for_diameter(90))
+    return prims, feed, wires
+
+
+# --- clamp / unclamp -------------------------------------------------------
+
+@pytest.mark.parametrize('part, outer, inner', [('front', 'bend_i', 'bend_ii'),
+                                                ('rear', 'bend_iv', 'bend_iii')])
+def test_clamp_torque_guard_then_inner_released(rig, part, outer, inner):
+    prims, feed, _ = rig
+    feed.states = [view(**{outer: -0.76, inner: 0.40}),      # outer short of -0.77
+                   view(**{outer: -0.80, inner: 0.34}),      # inner short of 0.35
+                   view(**{outer: -0.77, inner: 0.35})]      # both exactly at the guard
+    prims.clamp(part)
+    assert prims.control.mode_of(outer) == 'torque' and prims.control.mode_of(inner) == 'torque'
+    describe, guard, timeout, during = feed.waits[0]
+    idx = {name: i for i, name in enumerate(('camera_tilt', 'front_tilt', 'bend_i', 'bend_ii',
+                                             'imu_module', 'rotation', 'bend_iii', 'bend_iv'))}
+    assert during[idx[outer]] == 256 and during[idx[inner]] == -256   # written before the wait
+    assert not guard(feed.states[0]) and not guard(feed.states[1]) and guard(feed.states[2])
+    assert timeout == 15.0
+    assert prims.setpoint.get(inner) == 0          # released after the guard (4.7.2.3)
+    assert prims.setpoint.get(outer) == 256        # outer keeps pressing
+    assert prims.executed == ['clamp %s' % part]
+
+
+def test_custom_clamp_guards_and_names(rig):
+    prims, feed, _ = rig
+    feed.states = [view(bend_i=-0.70, bend_ii=0.30), view(bend_iv=-0.68, bend_iii=0.33),
+                   view(bend_i=-0.72, bend_ii=0.30)]
+    prims.clamp('front', 'clamp_front_custom_first')
+    prims.clamp('rear', 'clamp_rear_custom')
+    prims.clamp('front', 'clamp_front_custom')
+    assert prims.executed == ['clamp front custom first', 'clamp rear custom', 'clamp front custom']
+    # -0.70 satisfies the first-time custom guard (-0.69) but not the later one (-0.72)
+    assert feed.waits[0][1](feed.states[0]) and not feed.waits[2][1](feed.states[0])
+
+
+@pytest.mark.parametrize('partial, outer_guard, inner_guard', [(True, -0.48, 0.29), (False, -0.15, 0.07)])
+def test_unclamp_rear(rig, partial, outer_guard, inner_guard):
+    prims, feed, _ = rig
+    prims.setpoint.set('bend_iv', 256)
+    feed.states = [view(bend_iv=outer_guard - 0.01, bend_iii=inner_guard),
+                   view(bend_iv=outer_guard, bend_iii=inner_guard + 0.01),
+                   view(bend_iv=outer_guard, bend_iii=inner_guard)]
+    prims.unclamp('rear', partial=partial)
+    _, guard, _, during = feed.waits[0]
+    assert during[7] == -100 and during[6] == 150      # bend_iv, bend_iii
+    assert [guard(s) for s in feed.states] == [False, False, True]
+    assert prims.executed == ['unclamp rear%s' % (' partial' if partial else '')]
+
+
+def test_full_unclamp_front_uses_its_own_guards(rig):
+    prims, feed, _ = rig
+    feed.states = [view(bend_i=-0.21, bend_ii=0.0), view(bend_i=-0.2, bend_ii=0.03)]
+    prims.unclamp('front')
+    assert [feed.waits[0][1](s) for s in feed.states] == [False, True]
+
+
+# --- rotate / align --------------------------------------------------------
+
+@pytest.mark.parametrize('target', [0.71, -0.71, 0.7 + 1e-6 + 0.001, math.nan, math.inf])
+def test_rotation_beyond_limit_refused_and_nothing_sent(rig, target):
+    prims, feed, wires = rig
+    before = prims.setpoint.get_all()
+    with pytest.raises(Refused):
+        prims.rotate(target)
+    assert prims.setpoint.get_all() == before and feed.waits == [] and wires['control'].sent == []
+
+
+@pytest.mark.parametrize('target', [0.7, -0.7, 0.25, 0.0])
+def test_rotate_position_mode_and_tolerance(rig, target):
+    prims, feed, _ = rig
+    feed.states = [view(rotation=target + 0.05), view(rotation=target - 0.042)]
+    prims.rotate(target, name='rotate rear')
+    assert prims.control.mode_of('rotation') == 'position'
+    assert prims.setpoint.get('rotation') == units.rad_to_rotation(target)
+    guard = feed.waits[0][1]
+    assert not guard(feed.states[0]) and guard(feed.states[1])
+    assert prims.executed == ['rotate rear']
+
+
+def test_align_is_rotate_to_zero(rig):
+    prims, feed, _ = rig
+    prims.setpoint.set('rotation', 500)
+    feed.states = [view(rotation=0.01)]
+    prims.align()
+    assert prims.setpoint.get('rotation') == 0 and prims.executed == ['align']
+
+
+# --- move front ------------------------------------------------------------
+
+@pytest.mark.parametrize('kind, guard_rad', [('move_front', 0.4), ('move_front_first', 0.105),
+                                             ('move_front_later', 0.3)])
+def test_move_front_pwm_until_guard_then_stop(rig, kind, guard_rad):
+    prims, feed, _ = rig
+    feed.states = [view(front_tilt=guard_rad - 0.001), view(front_tilt=guard_rad)]
+    prims.move_front(kind)
+    _, guard, _, during = feed.waits[0]
+    assert during[1] == 32 and prims.control.mode_of('front_tilt') == 'pwm'
+    assert [guard(s) for s in feed.states] == [False, True]
+    assert prims.setpoint.get('front_tilt') == 0
+
+
+def test_move_front_down_guard_is_below(rig):
+    prims, feed, _ = rig
+    feed.states = [view(front_tilt=0.4), view(front_tilt=0.05)]
+    prims.move_front('move_front_down')
+    _, guard, _, during = feed.waits[0]
+    assert during[1] == -32 and [guard(s) for s in feed.states] == [False, True]
+    assert prims.setpoint.get('front_tilt') == 0
+
+
+@pytest.mark.parametrize('failure', [Cancelled('cancelled'), TimedOut('late')])
+def test_move_front_stops_the_front_when_interrupted(rig, failure):
+    prims, feed, _ = rig
+    feed.outcome = failure
+    with pytest.raises(type(failure)):
+        prims.move_front('move_front')
+    assert feed.waits[0][3][1] == 32               # it was moving
+    assert prims.setpoint.get('front_tilt') == 0    # and is stopped
+
+
+def test_interrupted_wait_propagates_from_clamp(rig):
+    prims, feed, _ = rig
+    feed.outcome = Cancelled('cancelled')
+    with pytest.raises(Cancelled):
+        prims.clamp('rear')
+
+
+# --- drive -----------------------------------------------------------------
+
+@pytest.mark.parametrize('mm_s', [170.0, -170.0, 150.0, 0.0])
+def test_drive_within_limit(rig, mm_s):
+    prims, _, _ = rig
+    prims.drive_at_velocity(mm_s)
+    assert prims.control.mode_of('wheels') == 'velocity'
+    assert prims.setpoint.get('wheels') == units.mm_s_to_wheel_counts(mm_s)
+
+
+@pytest.mark.parametrize('mm_s', [170.5, 200.0, -200.0, math.nan, math.inf])
+def test_drive_above_limit_refused(rig, mm_s):
+    prims, _, wires = rig
+    with pytest.raises(Refused) as info:
+        prims.drive_at_velocity(mm_s)
+    assert '170' in str(info.value)
+    assert prims.setpoint.get('wheels') == 0 and wires['control'].sent == []
+
+
+# --- safe hold (pirate.hold, issue 3: bends/front PWM 0, wheels 0, rotation held) ---
+
+def test_safe_hold_stops_everything_and_holds_rotation(rig):
+    prims, feed, wires = rig
+    for bend in ('bend_i', 'bend_ii', 'bend_iii', 'bend_iv'):
+        prims.control.set_mode(bend, 'torque')
+        prims.setpoint.set(bend, 256)
+    prims.drive_at_velocity(150)
+    prims.control.set_mode('front_tilt', 'pwm')
+    prims.setpoint.set('front_tilt', 32)
+    prims.control.set_mode('rotation', 'position')
+    prims.setpoint.set('rotation', units.rad_to_rotation(0.6))
+    feed.current = view(rotation=0.3)
+    before = len(wires['setpoint'].sent)
+    prims.safe_hold()
+    assert len(wires['setpoint'].sent) == before + 1          # published at once, no tick
+    sent = wires['setpoint'].sent[-1]
+    for name in ('bend_i', 'bend_ii', 'bend_iii', 'bend_iv', 'front_tilt', 'wheels'):
+        assert prims.setpoint.get(name) == 0, name
+    assert sent[1] == sent[2] == sent[3] == sent[6] == sent[7] == sent[11] == 0
+    assert sent[5] == units.rad_to_rotation(0.3)             # held where it is
+    assert prims.control.mode_of('rotation') == 'position'
+    for name in ('bend_i', 'bend_ii', 'bend_iii', 'bend_iv', 'front_tilt'):
+        assert prims.control.mode_of(name) == 'pwm', name    # worm gear holds, spring stays loaded
+
+
+def test_safe_hold_zeroes_before_the_mode_changes(rig):
+    """No motor may see a torque setpoint as a PWM duty: 0 goes out first."""
+    prims, _, wires = rig
+    order = []
+    for name in ('setpoint', 'control'):
+        wire = wires[name]
+        wire.publish = (lambda data, name=name, wire=wire: (order.append((name, list(data))),
+                                                              wire.sent.append(list(data))))
+    prims.control.set_mode('bend_i', 'torque')
+    prims.setpoint.set('bend_i', 256)
+    del order[:]
+    prims.safe_hold()
+    first_control = [i for i, (name, _) in enumerate(order) if name == 'control'][0]
+    zeroed = [i for i, (name, data) in enumerate(order) if name == 'setpoint' and data[2] == 0]
+    assert zeroed and zeroed[0] < first_control
+
+
+def test_safe_hold_rotation_beyond_limit_is_saturated(rig):
+    prims, feed, _ = rig
+    prims.control.set_mode('rotation', 'position')
+    feed.current = view(rotation=-0.9)
+    prims.safe_hold()
+    assert prims.setpoint.get('rotation') == units.rad_to_rotation(-safety.ROTATION_MAX_RAD)
+
+
+def test_safe_hold_front_in_position_mode_stops_in_pwm(rig):
+    prims, feed, _ = rig
+    prims.control.set_mode('front_tilt', 'position')
+    prims.setpoint.set('front_tilt', 600)
+    feed.current = view(front_tilt=0.2)
+    prims.safe_hold()
+    assert prims.setpoint.get('front_tilt') == 0 and prims.control.mode_of('front_tilt') == 'pwm'
+
+
+def test_safe_hold_without_any_state_still_stops(rig):
+    prims, feed, wires = rig
+    feed.current = None
+    prims.drive_at_velocity(50)
+    prims.setpoint.set('bend_iii', -200)
+    prims.safe_hold()
+    assert wires['setpoint'].sent[-1][11] == 0 and wires['setpoint'].sent[-1][6] == 0

@@ -1,0 +1,246 @@
+"""Pirate Server without ROS: which goals it refuses, and why; one exit path.
+
+Every refusal must come at once (reserve) with a message that names the
+reason; an accepted goal ends in exactly one outcome and, unless it
+succeeded, with the safe hold on the wire.
+"""
+import math
+
+import pytest
+
+from pirate import commands
+from pirate.feed import RobotFeed, RobotView
+from pirate.guards import GuardBook, load_files
+from pirate.pabs import PABS
+from pirate.pabs.base import Pab
+from pirate.primitives import MotionPrimitives
+from pirate.server import ABORTED, IDLE_UNCLAMPED, PREEMPTED, SUCCEEDED, PirateServer
+
+CLAMP_STRAIGHT, CLAMP_SIDEWAYS, DRIVE, HOME = 0, 1, 4, 5
+CLAMPED = dict(bend_i=-0.8, bend_ii=0.4, bend_iii=0.4, bend_iv=-0.8)
+
+
+class Goal(object):
+    """The fields of Pirate.action's goal."""
+
+    def __init__(self, name, pipe_diameter=90, distance=0.0, speed=0.0, option=0):
+        self.name, self.pipe_diameter, self.distance = name, pipe_diameter, distance
+        self.speed, self.option = speed, option
+
+
+class Wire(object):
+    def __init__(self):
+        self.sent = []
+
+    def publish(self, data):
+        self.sent.append(list(data))
+
+
+class Clock(object):
+    now = 50.0
+
+    def __call__(self):
+        return self.now
+
+
+def state(orientation=math.pi / 2, **angles):
+    base = {n: 0.0 for n in ('front_tilt', 'bend_i', 'bend_ii', 'rotation', 'bend_iii', 'bend_iv')}
+    base.update(angles)
+    return RobotView(base, orientation, 0.0, 0.0, 1.0)
+
+
+@pytest.fixture
+def rig():
+    wires = {k: Wire() for k in ('setpoint', 'control', 'limit')}
+    control = commands.Control(wires['control'], list)
+    setpoint = commands.Setpoint(wires['setpoint'], list, control)
+    limit = commands.Limit(wires['limit'], list)
+    clock = Clock()
+    feed = RobotFeed(0.3, clock=clock)
+    prims = MotionPrimitives(setpoint, control, limit, feed)
+    started, logs = [], []
+    server = PirateServer(prims, feed, GuardBook(*load_files()), lambda: started.append(True),
+                          log=logs.append)
+    return server, feed, clock, wires, logs
+
+
+def refused(server, goal, *words):
+    active = server.active
+    reason = server.reserve(goal)
+    assert reason, 'goal was accepted'
+    for word in words:
+        assert word.lower() in reason.lower(), (word, reason)
+    assert server.active == active          # a refusal changes nothing
+    return reason
+
+
+def test_straight_clamp_is_accepted(rig):
+    server, feed, _, _, _ = rig
+    feed.push(state())
+    assert server.reserve(Goal(CLAMP_STRAIGHT)) is None
+    assert server.active == 'CLAMP_STRAIGHT'
+
+
+def test_unknown_pab_code(rig):
+    server, feed, _, _, _ = rig
+    feed.push(state())
+    reason = refused(server, Goal(9), 'unknown PAB', '9')
+    for code, (name, _) in PABS.items():
+        assert name in reason           # the message lists what is known
+
+
+def test_unbuilt_clamp_sideways(rig):
+    server, feed, _, _, _ = rig
+    feed.push(state())
+    refused(server, Goal(CLAMP_SIDEWAYS), 'CLAMP_SIDEWAYS', 'not implemented')
+
+
+def test_pipe_without_guards(rig):
+    server, feed, _, _, _ = rig
+    feed.push(state())
+    refused(server, Goal(CLAMP_STRAIGHT, pipe_diameter=100), '100 mm', '90', '110')
+
+
+def test_drive_while_unclamped(rig):
+    server, feed, _, _, _ = rig
+    feed.push(state())
+    refused(server, Goal(DRIVE, distance=50.0), 'DRIVE', 'clamped')
+
+
+def test_drive_speed_above_maximum(rig):
+    server, feed, _, _, _ = rig
+    feed.push(state(**CLAMPED))
+    refused(server, Goal(DRIVE, distance=50.0, speed=200.0), 'speed', '200', '170')
+    refused(server, Goal(DRIVE, distance=50.0, speed=-20.0), 'speed')
+
+
+@pytest.mark.parametrize('distance', [0.0, math.nan, math.inf, 1e6, -1e6])
+def test_drive_distance_out_of_range(rig, distance):
+    server, feed, _, _, _ = rig
+    feed.push(state(**CLAMPED))
+    refused(server, Goal(DRIVE, distance=distance, speed=150.0), 'distance')
+
+
+def test_drive_clamped_and_in_range_is_accepted(rig):
+    server, feed, _, _, _ = rig
+    feed.push(state(**CLAMPED))
+    assert server.reserve(Goal(DRIVE, distance=-30.0, speed=150.0)) is None
+
+
+def test_no_robot_state(rig):
+    server, _, _, _, _ = rig
+    refused(server, Goal(CLAMP_STRAIGHT), 'no robot state')
+
+
+def test_stale_robot_state(rig):
+    server, feed, clock, _, _ = rig
+    feed.push(state())
+    clock.now += 1.0
+    refused(server, Goal(HOME), 'no robot state')
+
+
+def test_goal_while_one_runs_is_refused_not_queued(rig):
+    server, feed, _, _, _ = rig
+    feed.push(state())
+    assert server.reserve(Goal(CLAMP_STRAIGHT)) is None
+    refused(server, Goal(HOME), 'running', 'CLAMP_STRAIGHT', 'not queued')
+    assert server.active == 'CLAMP_STRAIGHT'
+
+
+@pytest.mark.parametrize('orientation', [0.0, math.pi, 1.2])
+def test_non_nominal_start_in_110(rig, orientation):
+    server, feed, _, _, _ = rig
+    feed.push(state(orientation=orientation))
+    refused(server, Goal(CLAMP_STRAIGHT, pipe_diameter=110), 'non-nominal', '110')
+
+
+def test_nominal_start_in_110_is_accepted(rig):
+    server, feed, _, _, _ = rig
+    feed.push(state(orientation=1.45))
+    assert server.reserve(Goal(CLAMP_STRAIGHT, pipe_diameter=110)) is None
+
+
+# --- run: one exit path ----------------------------------------------------
+
+def assert_safe(sent):
+    for index in (1, 2, 3, 6, 7, 11):      # front, bends I-IV, wheels
+        assert sent[index] == 0, (index, sent)
+
+
+def test_cancel_before_the_first_action_preempts_safely(rig):
+    server, feed, _, wires, logs = rig
+    feed.push(state())
+    goal = Goal(CLAMP_STRAIGHT)
+    assert server.reserve(goal) is None
+    server.cancel()
+    assert server.cancelled
+    outcome = server.run(goal)
+    assert outcome.status == PREEMPTED and 'cancelled' in outcome.message
+    assert_safe(wires['setpoint'].sent[-1])
+    assert server.active is None and server.state == IDLE_UNCLAMPED and not server.cancelled
+    assert logs[-1] == outcome.message
+    assert server.reserve(goal) is None      # ready for the next goal, cancel cleared
+    assert not server.cancelled
+
+
+def test_lost_feedback_aborts_safely(rig):
+    server, feed, clock, wires, _ = rig
+    feed.push(state())
+    goal = Goal(CLAMP_STRAIGHT)
+    assert server.reserve(goal) is None
+    clock.now += 1.0
+    outcome = server.run(goal)
+    assert outcome.status == ABORTED and 'no robot state' in outcome.message
+    assert_safe(wires['setpoint'].sent[-1])
+    assert server.active is None
+
+
+class Broken(Pab):
+    name = 'Broken'
+
+    def check(self, goal, view, guards):
+        return None
+
+    def run(self, ctx):
+        raise ZeroDivisionError('a bug')
+
+
+class Instant(Pab):
+    name = 'Instant'
+    leaves = 'clamped'
+
+    def run(self, ctx):
+        return 'nothing to do'
+
+
+def test_a_bug_in_a_pab_aborts_safely_and_is_logged(rig, monkeypatch):
+    server, feed, _, wires, logs = rig
+    monkeypatch.setitem(PABS, 7, ('BROKEN', Broken))
+    feed.push(state())
+    goal = Goal(7)
+    assert server.reserve(goal) is None
+    outcome = server.run(goal)
+    assert outcome.status == ABORTED and 'internal error' in outcome.message
+    assert any('ZeroDivisionError' in line for line in logs)
+    assert_safe(wires['setpoint'].sent[-1])
+    assert server.active is None
+
+
+def test_success_leaves_the_robot_alone_and_sets_the_state(rig, monkeypatch):
+    server, feed, _, wires, _ = rig
+    monkeypatch.setitem(PABS, 7, ('INSTANT', Instant))
+    feed.push(state())
+    goal = Goal(7)
+    assert server.reserve(goal) is None
+    before = len(wires['setpoint'].sent)
+    outcome = server.run(goal)
+    assert outcome.status == SUCCEEDED and 'nothing to do' in outcome.message
+    assert len(wires['setpoint'].sent) == before     # no safe hold after success
+    assert server.state == 'Idle Clamped' and server.active is None
+
+
+def test_pab_codes_match_the_action_definition():
+    pirate_msg = pytest.importorskip('pirate.msg')
+    goal = pirate_msg.PirateGoal
+    for code, (name, _) in PABS.items():
+        assert getattr(goal, name) == code
