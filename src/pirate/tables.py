@@ -44,6 +44,11 @@ LIMIT_SIZE = len(LIMIT_ELEMENTS)
 
 #: Boards whose motor 1 drives a wheel; the Mega copies element 11 to each.
 DRIVE_BOARDS = (22, 23, 24, 25, 26, 27)
+#: Adjacent modules are mounted mirrored (SPEC 3): the Mega applies this sign
+#: to the shared wheel setpoint per drive board. The report gives no values;
+#: this is our assumption, to be checked on the robot: Bend I +, Bend II -,
+#: Rotational (both boards) +, Bend III -, Bend IV +.
+WHEEL_SIGN = {22: 1, 23: -1, 24: 1, 25: 1, 26: -1, 27: 1}
 
 _BY_NAME = {e.name: e for e in SETPOINT_ELEMENTS}
 _BY_BOARD_MOTOR = {(e.board, e.motor): e for e in SETPOINT_ELEMENTS}

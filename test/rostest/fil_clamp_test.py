@@ -16,7 +16,7 @@ import rostest
 from std_msgs.msg import String
 
 from pirate import names
-from pirate.msg import PirateAction, PirateFeedback, PirateGoal, RobotState
+from pirate.msg import PirateAction, PirateGoal, RobotState
 
 FAULT_TOPIC = '/fil_robot/fault'
 

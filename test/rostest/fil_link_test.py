@@ -15,7 +15,6 @@ publishing setpoints at 10 Hz, as pirate.commands.Setpoint.tick does.
 """
 import os
 import signal
-import struct
 import subprocess
 import sys
 import tempfile
@@ -103,6 +102,7 @@ class FilLinkTest(unittest.TestCase):
                 self.host.kill()
                 self.host.wait()
         self.fil.stop()
+        os.rmdir(os.path.dirname(self.link))
 
     def _spawn_host(self):
         return subprocess.Popen([sys.executable, self.serial_node,

@@ -7,7 +7,6 @@ import struct
 import subprocess
 import sys
 
-import pytest
 
 from pirate import tables
 from pirate.msg import SetpointArray

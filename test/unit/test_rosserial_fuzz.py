@@ -82,13 +82,13 @@ def mutate(data, rng, count):
     return bytes(data)
 
 
-@settings(max_examples=1500, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=800, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.binary(max_size=200), st.lists(st.integers(0, 400), max_size=6))
 def test_random_bytes_never_yield_a_bad_frame(stream, cuts):
     check_stream(stream, cuts)
 
 
-@settings(max_examples=1500, deadline=None)
+@settings(max_examples=800, deadline=None)
 @given(frames_st, st.randoms(use_true_random=False), st.integers(1, 6),
        st.lists(st.integers(0, 400), max_size=6))
 def test_mutated_frames_match_oracle(frames, rng, count, cuts):
@@ -96,7 +96,7 @@ def test_mutated_frames_match_oracle(frames, rng, count, cuts):
     check_stream(stream, cuts)
 
 
-@settings(max_examples=1500, deadline=None)
+@settings(max_examples=800, deadline=None)
 @given(st.lists(st.integers(0, 0xFE), max_size=120).map(bytes), frames_st,
        st.lists(st.integers(0, 400), max_size=6))
 def test_resync_after_garbage_delivers_every_frame(garbage, frames, cuts):

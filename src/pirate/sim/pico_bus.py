@@ -32,11 +32,6 @@ BUS_BAUD = 115200
 REPLY_TIMEOUT_MS = 5
 NO_ELEMENT = -1
 
-#: Adjacent modules are mounted mirrored (SPEC 3): the Mega applies this sign
-#: to the shared wheel setpoint (element 11) per drive board. Per module:
-#: Bend I +, Bend II -, Rotational (both boards) +, Bend III -, Bend IV +.
-WHEEL_SIGN = {22: 1, 23: -1, 24: 1, 25: 1, 26: -1, 27: 1}
-
 #: What the Mega sends each board: (board, setpoint0 index, setpoint1 index,
 #: mode0 index, mode1 index, limit index, wheel sign of motor 1), indices
 #: into the laptop's arrays, NO_ELEMENT where the motor has none.
@@ -52,7 +47,7 @@ def _board_map():
         name = tables.SETPOINT_ELEMENTS[sp0].name
         limit = (tables.LIMIT_ELEMENTS.index(name) if name in tables.LIMIT_ELEMENTS
                  else NO_ELEMENT)
-        rows.append(BoardMap(board, sp0, sp1, sp0, mode1, limit, WHEEL_SIGN.get(board, 1)))
+        rows.append(BoardMap(board, sp0, sp1, sp0, mode1, limit, tables.WHEEL_SIGN.get(board, 1)))
     return tuple(rows)
 
 
