@@ -131,7 +131,7 @@ class GoalsAndCancels(RuleBasedStateMachine):
 def test_goals_cancels_and_goals_during_cancels():
     SEEN.clear()
     run_state_machine_as_test(GoalsAndCancels, settings=settings(
-        max_examples=25, stateful_step_count=10, deadline=None,
+        max_examples=25, stateful_step_count=10, deadline=None, database=None,
         suppress_health_check=[HealthCheck.too_slow]))
     print('outcomes over all examples: %s' % dict(SEEN))
     assert SEEN['succeeded'] and SEEN['preempted'] and SEEN['refused'], dict(SEEN)

@@ -44,8 +44,10 @@ Constants and where they come from
   re-adjust totals about 23 s (report: about 25 s).
 - Wheels: first-order lag WHEEL_TAU_S 0.05 s to the velocity setpoint (the
   PICO's 50 Hz velocity loop settles in a few samples).
-- Worm gears (24:1) are self-locking: a motor with no drive, or a stopped
-  board, holds its joint where it is.
+- Worm gears (24:1) are self-locking: a motor with no drive (PWM 0), or a
+  stopped board, holds its joint where it is. A bend in torque mode at
+  setpoint 0 is the exception: the torque loop makes it compliant, and an
+  inner bend is closed by the outer one's push (``_follow_outer``).
 - Spring: effort in contact = commanded torque, TORQUE_MNM_PER_COUNT mNm per
   setpoint count (256 counts ~ 400 mNm, the peaks of Figs 6.2, 6.4),
   read back through the spring encoder (units.mnm_to_spring).
@@ -241,6 +243,9 @@ class PirateModel(object):
             return  # stopped, or a mode the bend has not got: the worm holds
         if mode != CODE['pwm']:
             counts = self._torque_counts(name, counts)
+        if counts == 0 and mode != CODE['pwm'] and name == CLAMPS[part][1]:
+            self._follow_outer(name, part)
+            return
         speed = BEND_MAX_RAD_S * math.tanh(abs(counts) / BEND_SETPOINT_SCALE)
         direction = -1.0 if counts > 0 else 1.0   # +setpoint closes outer (-) and opens inner
         e = self.contact_angle(part)
@@ -251,6 +256,15 @@ class PirateModel(object):
         self.joint_angles[name] = min(max(target, low), high)
         pressing = counts != 0 and (target < low or target > high)
         self.effort[name] = counts * TORQUE_MNM_PER_COUNT if pressing else 0.0
+
+    def _follow_outer(self, name, part):
+        """An inner bend at zero torque is compliant: the outer bend's push
+        closes the V until both ends rest on the floor (inner = -outer / 2),
+        at most up to the wall. This is why the report's inner bends end near
+        0.43 rad after the clamp has released them (Table 6.5)."""
+        closure = -self.joint_angles[CLAMPS[part][0]] / 2.0
+        self.joint_angles[name] = max(self.joint_angles[name], min(closure, self.contact_angle(part)))
+        self.effort[name] = 0.0
 
     def _step_positional(self, name, rad_s_per_duty, limits, dt):
         """A PWM/position joint: camera tilt and pan, front module."""

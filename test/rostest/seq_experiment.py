@@ -1,0 +1,211 @@
+#!/usr/bin/env python3
+"""rostest: the sequencer over ROS against the simulated robot (sim time).
+
+One script for every seq_*.test; ``~scenario`` picks the test:
+- ``experiment``: send ``~goals`` in order, each must succeed with the
+  primitives ``~expected`` (collected from the action feedback field
+  ``primitive``, non-empty values, in order); clamp goals end straight;
+- ``cancel``: start ``~goals[0]``, cancel after ``~cancel_after`` sim s:
+  PREEMPTED, a safe setpoint array on the wire, then ``~goals[0]`` again
+  succeeds;
+- ``reject``: each of ``~rejected`` is REJECTED with a message, and a goal
+  sent while one runs is REJECTED too;
+- ``feedback_loss``: start ``~goals[0]``, kill the state node after
+  ``~cut_after`` sim s: ABORTED with a message, safe setpoints published;
+- ``sigint``: start a pirate_manager subprocess of our own, SIGINT it: a
+  safe setpoint array goes out before it exits.
+Waits are on messages/conditions with deadlines; never a bare sleep.
+"""
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+import unittest
+
+import actionlib
+import rosnode
+import rospy
+import rostest
+from actionlib_msgs.msg import GoalStatus
+
+from pirate import names
+from pirate.msg import PirateAction, PirateGoal, RobotState, SetpointArray
+
+UP_S = 60.0                 # wall s for the stack to come up
+GOAL_WALL_S = 120.0         # wall s one goal may take
+STRAIGHT = (1.52, 1.62)     # Table 5.4
+SAFE_INDICES = (1, 2, 3, 6, 7, 11)   # front, bends I-IV, wheels
+CLAMP_STRAIGHT = PirateGoal.CLAMP_STRAIGHT
+
+
+def make_goal(spec):
+    return PirateGoal(name=int(spec['name']), pipe_diameter=int(spec.get('pipe_diameter', 90)),
+                      distance=float(spec.get('distance', 0.0)), speed=float(spec.get('speed', 0.0)),
+                      option=int(spec.get('option', 0)))
+
+
+def is_safe(data):
+    return all(data[i] == 0 for i in SAFE_INDICES)
+
+
+class SequencerTest(unittest.TestCase):
+    """The Pirate Server over actionlib, the simulated robot behind it."""
+
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('seq_experiment')
+        cls.lock = threading.Lock()
+        cls.setpoints = []        # (wall monotonic, data)
+        cls.state = None
+        cls.setpoint_sub = rospy.Subscriber(names.SETPOINT_TOPIC, SetpointArray, cls._on_setpoint,
+                                            queue_size=50)
+        rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, cls._on_state, queue_size=5)
+        if rospy.get_param('~scenario', 'experiment') == 'sigint':
+            return      # the test starts its own manager
+        cls.client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
+        if not cls.client.wait_for_server(rospy.Duration(UP_S)):
+            raise AssertionError('no Pirate Server within %.0f s' % UP_S)
+        cls._wait(lambda: cls.state is not None and not cls.state.stale, 'robot state', UP_S)
+
+    @classmethod
+    def _on_setpoint(cls, msg):
+        with cls.lock:
+            cls.setpoints.append((time.monotonic(), list(msg.data)))
+
+    @classmethod
+    def _on_state(cls, msg):
+        cls.state = msg
+
+    @staticmethod
+    def _wait(condition, what, wall_s):
+        end = time.monotonic() + wall_s
+        while not condition():
+            if time.monotonic() > end or rospy.is_shutdown():
+                raise AssertionError('timed out waiting for %s' % what)
+            time.sleep(0.02)
+
+    def _send(self, spec, client=None):
+        """Send a goal; return the list the feedback primitives are appended to."""
+        prims = []
+
+        def on_feedback(fb):
+            if fb.primitive and (not prims or prims[-1] != fb.primitive):
+                prims.append(fb.primitive)
+        (client or self.client).send_goal(make_goal(spec), feedback_cb=on_feedback)
+        return prims
+
+    def _finish(self, client=None):
+        client = client or self.client
+        self.assertTrue(client.wait_for_result(rospy.Duration(GOAL_WALL_S)), 'goal did not end')
+        return client.get_state(), client.get_result(), client.get_goal_status_text()
+
+    def _wait_sim(self, sim_s):
+        start = rospy.get_time()
+        self._wait(lambda: rospy.get_time() - start >= sim_s, '%.1f sim s' % sim_s, GOAL_WALL_S)
+
+    def _safe_after(self, since):
+        with self.lock:
+            return any(t >= since and is_safe(d) for t, d in self.setpoints)
+
+    def _assert_straight(self):
+        self.assertTrue(STRAIGHT[0] <= self.state.orientation <= STRAIGHT[1], self.state.orientation)
+
+    # --- scenarios --------------------------------------------------------
+    def test_scenario(self):
+        scenario = rospy.get_param('~scenario', 'experiment')
+        getattr(self, '_scenario_' + scenario)()
+
+    def _scenario_experiment(self):
+        goals = rospy.get_param('~goals')
+        expected = rospy.get_param('~expected')
+        for spec, primitives in zip(goals, expected):
+            prims = self._send(spec)
+            state, result, text = self._finish()
+            self.assertEqual(state, GoalStatus.SUCCEEDED, '%s: %s' % (spec, text))
+            self.assertTrue(result.success, result.message)
+            self.assertEqual(prims, primitives, spec)
+            if int(spec['name']) == CLAMP_STRAIGHT:
+                self._assert_straight()
+
+    def _scenario_cancel(self):
+        spec = rospy.get_param('~goals')[0]
+        self._send(spec)
+        self._wait_sim(float(rospy.get_param('~cancel_after')))
+        self.assertEqual(self.client.get_state(), GoalStatus.ACTIVE, 'goal ended before the cancel')
+        cancelled_at = time.monotonic()
+        self.client.cancel_goal()
+        state, result, _ = self._finish()
+        self.assertEqual(state, GoalStatus.PREEMPTED, result.message if result else '')
+        self.assertIn('cancel', result.message)
+        self._wait(lambda: self._safe_after(cancelled_at), 'a safe setpoint array', 10.0)
+        self._send(spec)
+        state, result, text = self._finish()
+        self.assertEqual(state, GoalStatus.SUCCEEDED, text)
+        self._assert_straight()
+
+    def _scenario_reject(self):
+        for spec in rospy.get_param('~rejected'):
+            self._send(spec)
+            state, result, text = self._finish()
+            self.assertEqual(state, GoalStatus.REJECTED, '%s -> %s' % (spec, state))
+            self.assertFalse(result.success)
+            self.assertGreater(len(result.message), 10, spec)
+            self.assertEqual(text, result.message)
+            rospy.loginfo('rejected %s: %s', spec, result.message)
+        # a goal while one runs is refused, not queued
+        self._send({'name': CLAMP_STRAIGHT})
+        self._wait(lambda: self.client.get_state() == GoalStatus.ACTIVE, 'first goal active', 30.0)
+        other = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
+        self.assertTrue(other.wait_for_server(rospy.Duration(UP_S)))
+        self._send({'name': PirateGoal.HOME}, client=other)
+        state, result, text = self._finish(other)
+        self.assertEqual(state, GoalStatus.REJECTED)
+        self.assertIn('running', result.message)
+        self.assertEqual(self.client.get_state(), GoalStatus.ACTIVE)   # the first goes on
+        self.client.cancel_goal()
+        self.assertEqual(self._finish()[0], GoalStatus.PREEMPTED)
+
+    def _scenario_feedback_loss(self):
+        spec = rospy.get_param('~goals')[0]
+        self._send(spec)
+        self._wait_sim(float(rospy.get_param('~cut_after')))
+        self.assertEqual(self.client.get_state(), GoalStatus.ACTIVE, 'goal ended before the cut')
+        cut_at = time.monotonic()
+        _, failed = rosnode.kill_nodes([rospy.get_param('~state_node', '/pirate_state')])
+        self.assertFalse(failed)
+        state, result, _ = self._finish()
+        self.assertEqual(state, GoalStatus.ABORTED)
+        self.assertIn('no robot state', result.message)
+        self._wait(lambda: self._safe_after(cut_at), 'a safe setpoint array', 10.0)
+
+    def _scenario_sigint(self):
+        # A manager of our own, in its own namespace (its topics are the
+        # global names of pirate.names, so it publishes on the same array).
+        # Its private params (guards, sequencer) are loaded by seq_sigint.test
+        # under /pirate_manager_sigint.
+        node = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'nodes', 'pirate_manager')
+        proc = subprocess.Popen([sys.executable, node, '__name:=pirate_manager_sigint', '_panel:=false'],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
+        try:
+            # connected to its setpoint publisher, and its action server is up
+            self._wait(lambda: self.setpoint_sub.get_num_connections() > 0 or proc.poll() is not None,
+                       'the manager\'s setpoint publisher', UP_S)
+            self.assertIsNone(proc.poll(), 'manager exited early')
+            client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
+            self.assertTrue(client.wait_for_server(rospy.Duration(UP_S)))
+            with self.lock:
+                del self.setpoints[:]
+            sent_at = time.monotonic()
+            proc.send_signal(signal.SIGINT)
+            self.assertEqual(proc.wait(timeout=30.0), 0)
+            self.assertTrue(self._safe_after(sent_at), 'no safe setpoint array before exit')
+        finally:
+            if proc.poll() is None:
+                proc.kill()
+                proc.wait()
+
+
+if __name__ == '__main__':
+    rostest.rosrun('pirate', 'seq_experiment', SequencerTest)
