@@ -154,6 +154,16 @@ def test_already_clamped_straight_ends_at_once():
     assert MACHINE.next(cs.CHANGE_MODES, facts) == END
 
 
+@pytest.mark.parametrize('nominal_start, expected', [
+    (True, cs.CLAMPING_FRONT), (False, cs.CLAMPING_FRONT_CUSTOM)])
+def test_front_clamp_after_lifting_follows_the_start(nominal_start, expected):
+    # The rear is already clamped (e.g. a second goal after a cancel): a
+    # nominal start clamps the front with the full guards, a non-nominal
+    # start with the custom ones (Table 5.3).
+    facts = cs.Facts(nominal_start, False, True, NONE, FULL, 2)
+    assert cs.MACHINE.next(cs.MOVING_FRONT, facts) == expected
+
+
 def test_next_refuses_no_or_several_transitions():
     facts = cs.Facts(True, True, True, FULL, CUSTOM, 2)    # no exit of clamping rear fits
     with pytest.raises(PabFailed) as info:
