@@ -52,6 +52,17 @@ def _range(name, mode):
     return -DUTY_MAX, DUTY_MAX
 
 
+def _counts(name, what, value):
+    """``value`` as whole counts; Refused when it is not a finite number."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise Refused('%s: %s %r is not a number' % (name, what, value))
+    if not math.isfinite(number):
+        raise Refused('%s: %s %r is not finite' % (name, what, value))
+    return int(round(number))
+
+
 def limit_setpoint(name, mode, value):
     """Return ``(counts, reason)``: ``value`` made safe for element ``name``.
 
@@ -59,14 +70,8 @@ def limit_setpoint(name, mode, value):
     :class:`Refused` for a value that is not a finite number.
     """
     tables.element(name)  # KeyError for an unknown element
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        raise Refused('%s: setpoint %r is not a number' % (name, value))
-    if not math.isfinite(number):
-        raise Refused('%s: setpoint %r is not finite' % (name, value))
+    counts = _counts(name, 'setpoint', value)
     low, high = _range(name, mode)
-    counts = int(round(number))
     if counts < low or counts > high:
         clamped = min(max(counts, low), high)
         return clamped, ('%s: setpoint %d counts outside [%d, %d] in %s mode, '
@@ -86,13 +91,7 @@ def check_control_code(index, code):
 def limit_torque_limit(name, value):
     """Return ``(uint16, reason)`` for a torque limit of bend ``name``."""
     tables.limit_index(name)
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        raise Refused('%s: torque limit %r is not a number' % (name, value))
-    if not math.isfinite(number):
-        raise Refused('%s: torque limit %r is not finite' % (name, value))
-    counts = int(round(number))
+    counts = _counts(name, 'torque limit', value)
     if 0 <= counts <= NO_LIMIT:
         return counts, None
     clamped = min(max(counts, 0), NO_LIMIT)

@@ -13,6 +13,8 @@ from pirate.feed import Cancelled, RobotView, TimedOut
 from pirate.guards import GuardBook, load_files
 from pirate.primitives import MotionPrimitives, Refused
 
+from fakes import Wire
+
 JOINTS = ('front_tilt', 'bend_i', 'bend_ii', 'rotation', 'bend_iii', 'bend_iv')
 
 
@@ -20,14 +22,6 @@ def view(**angles):
     base = {name: 0.0 for name in JOINTS}
     base.update(angles)
     return RobotView(base, math.pi / 2, 0.0, 0.0, 1.0)
-
-
-class Wire(object):
-    def __init__(self):
-        self.sent = []
-
-    def publish(self, data):
-        self.sent.append(list(data))
 
 
 class FakeFeed(object):

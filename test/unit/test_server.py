@@ -16,6 +16,8 @@ from pirate.pabs.base import Pab
 from pirate.primitives import MotionPrimitives
 from pirate.server import ABORTED, IDLE_UNCLAMPED, PREEMPTED, SUCCEEDED, PirateServer
 
+from fakes import Wire
+
 CLAMP_STRAIGHT, CLAMP_SIDEWAYS, DRIVE, HOME = 0, 1, 4, 5
 CLAMPED = dict(bend_i=-0.8, bend_ii=0.4, bend_iii=0.4, bend_iv=-0.8)
 
@@ -26,14 +28,6 @@ class Goal(object):
     def __init__(self, name, pipe_diameter=90, distance=0.0, speed=0.0, option=0):
         self.name, self.pipe_diameter, self.distance = name, pipe_diameter, distance
         self.speed, self.option = speed, option
-
-
-class Wire(object):
-    def __init__(self):
-        self.sent = []
-
-    def publish(self, data):
-        self.sent.append(list(data))
 
 
 class Clock(object):
