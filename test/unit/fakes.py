@@ -9,3 +9,13 @@ class Wire(object):
 
     def publish(self, data):
         self.sent.append(list(data))
+
+
+def command_arrays():
+    """Setpoint, Control and Limit over recording wires: (wires, setpoint, control, limit)."""
+    from pirate import commands
+    wires = {k: Wire() for k in ('setpoint', 'control', 'limit')}
+    control = commands.Control(wires['control'], list)
+    setpoint = commands.Setpoint(wires['setpoint'], list, control)
+    limit = commands.Limit(wires['limit'], list)
+    return wires, setpoint, control, limit

@@ -8,12 +8,12 @@ import math
 
 import pytest
 
-from pirate import commands, safety, units
+from pirate import safety, units
 from pirate.feed import Cancelled, RobotView, TimedOut
 from pirate.guards import GuardBook, load_files
 from pirate.primitives import MotionPrimitives, Refused
 
-from fakes import Wire
+from fakes import command_arrays
 
 JOINTS = ('front_tilt', 'bend_i', 'bend_ii', 'rotation', 'bend_iii', 'bend_iv')
 
@@ -54,10 +54,7 @@ class FakeFeed(object):
 
 @pytest.fixture
 def rig():
-    wires = {k: Wire() for k in ('setpoint', 'control', 'limit')}
-    control = commands.Control(wires['control'], list)
-    setpoint = commands.Setpoint(wires['setpoint'], list, control)
-    limit = commands.Limit(wires['limit'], list)
+    wires, setpoint, control, limit = command_arrays()
     feed = FakeFeed()
     feed.arrays = setpoint.get_all
     prims = MotionPrimitives(setpoint, control, limit, feed)

@@ -8,7 +8,6 @@ import math
 
 import pytest
 
-from pirate import commands
 from pirate.feed import RobotFeed, RobotView
 from pirate.guards import GuardBook, load_files
 from pirate.pabs import PABS
@@ -16,7 +15,7 @@ from pirate.pabs.base import Pab
 from pirate.primitives import MotionPrimitives
 from pirate.server import ABORTED, IDLE_UNCLAMPED, PREEMPTED, SUCCEEDED, PirateServer
 
-from fakes import Wire
+from fakes import command_arrays
 
 CLAMP_STRAIGHT, CLAMP_SIDEWAYS, DRIVE, HOME = 0, 1, 4, 5
 CLAMPED = dict(bend_i=-0.8, bend_ii=0.4, bend_iii=0.4, bend_iv=-0.8)
@@ -45,10 +44,7 @@ def state(orientation=math.pi / 2, **angles):
 
 @pytest.fixture
 def rig():
-    wires = {k: Wire() for k in ('setpoint', 'control', 'limit')}
-    control = commands.Control(wires['control'], list)
-    setpoint = commands.Setpoint(wires['setpoint'], list, control)
-    limit = commands.Limit(wires['limit'], list)
+    wires, setpoint, control, limit = command_arrays()
     clock = Clock()
     feed = RobotFeed(0.3, clock=clock)
     prims = MotionPrimitives(setpoint, control, limit, feed)
