@@ -18,7 +18,6 @@ from xmlrpc.client import ServerProxy
 import actionlib
 import rosgraph
 import rosnode
-import rospkg
 import rospy
 import rostest
 
@@ -26,7 +25,8 @@ from pirate import names
 from pirate.msg import PirateAction, PirateGoal
 from pirate.viz import plot_cli
 
-PKG = rospkg.RosPack().get_path('pirate')
+# The repository (not the workspace's folder of links): results land in its test-results/.
+PKG = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 RESULTS = os.path.join(PKG, 'test-results')
 BAG = os.path.join(RESULTS, 'viz_clamp_straight.bag')
 PNG = os.path.join(RESULTS, 'plot_clamp_straight.png')
@@ -68,7 +68,8 @@ class VizPlotClampTest(unittest.TestCase):
             client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
             self.assertTrue(client.wait_for_server(rospy.Duration(60)), 'no Pirate Server')
             deadline = time.monotonic() + 60
-            while not _recorder_connected(RECORDED):
+            goal_pub = client.action_client.pub_goal   # server + recorder, from our side too
+            while not (_recorder_connected(RECORDED) and goal_pub.get_num_connections() >= 2):
                 self.assertLess(time.monotonic(), deadline, 'recorder never connected')
                 self.assertIsNone(recorder.poll(), 'record.launch exited')
                 time.sleep(0.2)   # poll interval of the node query

@@ -16,7 +16,6 @@ import time
 import unittest
 
 import numpy
-import rospkg
 import rospy
 import rostest
 import tf2_ros
@@ -27,7 +26,8 @@ from visualization_msgs.msg import Marker
 from pirate import names
 from pirate.viz import urdf_gen
 
-PKG = rospkg.RosPack().get_path('pirate')
+# The repository (not the workspace's folder of links): results land in its test-results/.
+PKG = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 SCREENSHOT = os.path.join(PKG, 'test-results', 'rviz_screenshot.png')
 RENDER_TIMEOUT_S = 120.0     # software OpenGL on a shared 2-core machine
 ORANGE_MIN_PIXELS = 1500     # the seven modules at the configured view
