@@ -168,7 +168,7 @@ class PirateManager(object):
     def _status(self, _req):
         return ServerStatusResponse(active=bool(self.server.active), cancelled=self.server.cancelled,
                                     server_state=self.server.state, pab_state=self.server.pab_state,
-                                    primitive=self.server.primitive)
+                                    primitive=self.server.primitive, robot_connected=self.feed.fresh())
 
     # --- shutdown ---------------------------------------------------------
     def shutdown(self, *_signal):

@@ -15,7 +15,8 @@ from actionlib_msgs.msg import GoalStatus
 
 from pirate import names
 from pirate.mission import MissionError, MissionRunner, load_mission
-from pirate.msg import PirateAction, PirateGoal, RobotState
+from pirate.msg import PirateAction, PirateGoal
+from pirate.srv import ServerStatus
 
 STATUS = {GoalStatus.SUCCEEDED: 'succeeded', GoalStatus.ABORTED: 'aborted',
           GoalStatus.PREEMPTED: 'preempted', GoalStatus.REJECTED: 'rejected',
@@ -36,14 +37,20 @@ class ActionGoalRunner(object):
         self._timeout = timeout_s
 
     def connect(self, wall_timeout=30.0):
-        """Wait for the Pirate Server and a fresh robot state; the reason if not."""
+        """Wait for the Pirate Server and for it to see the robot; the reason if not."""
         if not self._client.wait_for_server(rospy.Duration(self._timeout)):
             return 'no Pirate Server at %s' % names.PIRATE_ACTION
-        try:
-            rospy.wait_for_message(names.ROBOT_STATE_TOPIC, RobotState, wall_timeout)
-        except rospy.ROSException:
-            return 'no robot state on %s within %.0f s' % (names.ROBOT_STATE_TOPIC, wall_timeout)
-        return None
+        status = rospy.ServiceProxy(names.SERVER_STATUS_SERVICE, ServerStatus)
+        deadline = time.monotonic() + wall_timeout
+        while time.monotonic() < deadline and not rospy.is_shutdown():
+            try:
+                status.wait_for_service(max(deadline - time.monotonic(), 0.1))
+                if status().robot_connected:
+                    return None
+            except (rospy.ROSException, rospy.ServiceException):
+                pass
+            time.sleep(0.1)   # poll the status service
+        return 'the Pirate Server sees no robot state within %.0f s' % wall_timeout
 
     def __call__(self, step, on_feedback):
         goal = PirateGoal(name=step.code, pipe_diameter=step.pipe_diameter, distance=step.distance,

@@ -13,6 +13,8 @@ import unittest
 import actionlib
 import rospy
 import rostest
+
+import ready
 from std_msgs.msg import String
 
 from pirate import names
@@ -38,6 +40,7 @@ class FilClampTest(unittest.TestCase):
         while self.fault.get_num_connections() == 0:
             self.assertLess(time.monotonic(), deadline, 'fil_robot not listening for faults')
             time.sleep(0.1)
+        ready.wait_robot_connected(60)
 
     def _clamp(self, feedback=None):
         self.client.send_goal(PirateGoal(name=PirateGoal.CLAMP_STRAIGHT, pipe_diameter=90),

@@ -28,6 +28,8 @@ import unittest
 
 import rospy
 import rostest
+
+import ready
 from actionlib_msgs.msg import GoalStatusArray
 from rosgraph_msgs.msg import Log
 
@@ -145,6 +147,7 @@ class PanelScenario(unittest.TestCase):
         steps = rospy.get_param('~steps')
         self._until(lambda: bool(self.angles), 30, 'the robot state on %s' % names.ROBOT_STATE_TOPIC)
         self._until(lambda: self.pub.get_num_connections() > 0, 30, 'the manager to subscribe the panel')
+        ready.wait_robot_connected(60)
         self._until(lambda: 42 in self.leds, 30, 'the manager to send its LEDs')
         for number, step in enumerate(steps):
             (kind, arg), = step.items()

@@ -28,6 +28,8 @@ import actionlib
 import rosnode
 import rospy
 import rostest
+
+import ready
 from actionlib_msgs.msg import GoalStatus
 
 from pirate import names
@@ -68,6 +70,7 @@ class SequencerTest(unittest.TestCase):
         if not cls.client.wait_for_server(rospy.Duration(UP_S)):
             raise AssertionError('no Pirate Server within %.0f s' % UP_S)
         cls._wait(lambda: cls.state is not None and not cls.state.stale, 'robot state', UP_S)
+        ready.wait_robot_connected(UP_S)
 
     @classmethod
     def _on_setpoint(cls, msg):

@@ -21,6 +21,8 @@ import rosnode
 import rospy
 import rostest
 
+import ready
+
 from pirate import names
 from pirate.msg import PirateAction, PirateGoal
 from pirate.viz import plot_cli
@@ -67,6 +69,7 @@ class VizPlotClampTest(unittest.TestCase):
         try:
             client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
             self.assertTrue(client.wait_for_server(rospy.Duration(60)), 'no Pirate Server')
+            ready.wait_robot_connected(60)
             deadline = time.monotonic() + 60
             goal_pub = client.action_client.pub_goal   # server + recorder, from our side too
             while not (_recorder_connected(RECORDED) and goal_pub.get_num_connections() >= 2):
