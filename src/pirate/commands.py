@@ -208,3 +208,13 @@ class Limit(CommandArray):
         if self.enabled:
             return self._send()
         return None
+
+
+def play(control, setpoint, limit):
+    """Start the robot: PLAY to the boards and the 10 Hz setpoint/limit stream.
+
+    Used by the Mapper's Play button and by the Pirate Server when a goal
+    starts (a goal is a request to move).
+    """
+    control.command('play')
+    setpoint.enabled = limit.enabled = True

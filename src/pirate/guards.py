@@ -12,8 +12,29 @@ import yaml
 
 #: One bend's part of a clamp/unclamp: setpoint (counts) and guard (rad).
 BendGuard = collections.namedtuple('BendGuard', 'joint setpoint guard')
-#: A two-bend primitive: outer (alpha) and inner (beta) bend.
-PairGuard = collections.namedtuple('PairGuard', 'kind outer inner')
+
+
+class PairGuard(collections.namedtuple('PairGuard', 'kind outer inner')):
+    """A two-bend primitive: outer (alpha) and inner (beta) bend (SPEC 7)."""
+
+    __slots__ = ()
+
+    def closed(self, angles):
+        """Clamp guard: outer at least this negative, inner at least this positive."""
+        return (angles[self.outer.joint] <= self.outer.guard
+                and angles[self.inner.joint] >= self.inner.guard)
+
+    def opened(self, angles):
+        """Unclamp guard: both bends back at least this close to 0."""
+        return (angles[self.outer.joint] >= self.outer.guard
+                and angles[self.inner.joint] <= self.inner.guard)
+
+    def describe(self, closing):
+        """The guard as text, for feedback and logs."""
+        outer, inner = ('<=', '>=') if closing else ('>=', '<=')
+        return '%s %s %.2f and %s %s %.2f' % (self.outer.joint, outer, self.outer.guard,
+                                            self.inner.joint, inner, self.inner.guard)
+
 #: A one-joint move: setpoint (counts) until the joint passes guard (rad).
 MoveGuard = collections.namedtuple('MoveGuard', 'kind setpoint guard')
 

@@ -117,8 +117,7 @@ class PirateManager(object):
 
     def _start_robot(self):
         """A goal is a request to move: PLAY and start the 10 Hz arrays."""
-        self.control.command('play')
-        self.setpoint.enabled = self.limit.enabled = True
+        commands.play(self.control, self.setpoint, self.limit)
 
     # --- action side ------------------------------------------------------
     def _on_goal(self, handle):

@@ -30,7 +30,7 @@ passed in, so every rule is unit-tested without ROS.
 """
 import threading
 
-from pirate import safety, tables
+from pirate import commands, safety, tables
 from pirate.hold import safe_hold
 from pirate.panel import config as panel_config
 from pirate.panel.config import MANUAL, PAB
@@ -177,9 +177,7 @@ class Mapper(object):
 
     def _on_play(self, entry, value):
         self.playing = True
-        self._setpoint.enabled = True
-        self._limit.enabled = True
-        self._control.command('play')
+        commands.play(self._control, self._setpoint, self._limit)
         self._run_leds()
         self._log('playing (%s mode)' % self.operation_mode)
 

@@ -81,11 +81,7 @@ class MotionPrimitives(object):
         for bend in (pair.outer, pair.inner):
             self.control.set_mode(bend.joint, 'torque')
             self.setpoint.set(bend.joint, bend.setpoint)
-        self.wait_for(clamp_name(kind, part),
-                   lambda v: (v.angles[pair.outer.joint] <= pair.outer.guard
-                              and v.angles[pair.inner.joint] >= pair.inner.guard),
-                   '%s <= %.2f and %s >= %.2f' % (pair.outer.joint, pair.outer.guard,
-                                                   pair.inner.joint, pair.inner.guard))
+        self.wait_for(clamp_name(kind, part), lambda v: pair.closed(v.angles), pair.describe(True))
         self.setpoint.set(pair.inner.joint, 0)
 
     def unclamp(self, part, partial=False):
@@ -95,10 +91,7 @@ class MotionPrimitives(object):
             self.control.set_mode(bend.joint, 'torque')
             self.setpoint.set(bend.joint, bend.setpoint)
         self.wait_for('unclamp %s%s' % (part, ' partial' if partial else ''),
-                   lambda v: (v.angles[pair.outer.joint] >= pair.outer.guard
-                              and v.angles[pair.inner.joint] <= pair.inner.guard),
-                   '%s >= %.2f and %s <= %.2f' % (pair.outer.joint, pair.outer.guard,
-                                                   pair.inner.joint, pair.inner.guard))
+                      lambda v: pair.opened(v.angles), pair.describe(False))
 
     def rotate(self, target_rad, name='rotate'):
         """Rotational module to ``target_rad`` from aligned (4.7.2.2).

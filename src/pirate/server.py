@@ -43,12 +43,7 @@ class PabContext(object):
 
 def robot_clamped(view, guards):
     """True when both parts are past their full clamp guards."""
-    for part in ('front', 'rear'):
-        pair = guards.pair('clamp', part)
-        if not (view.angles[pair.outer.joint] <= pair.outer.guard
-                and view.angles[pair.inner.joint] >= pair.inner.guard):
-            return False
-    return True
+    return all(guards.pair('clamp', part).closed(view.angles) for part in ('front', 'rear'))
 
 
 class PirateServer(object):

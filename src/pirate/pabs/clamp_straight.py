@@ -154,9 +154,7 @@ class ClampStraight(Pab):
         view = ctx.feed.latest()
         self.nominal_start = in_region(view.orientation, ctx.guards.region('nominal'))
         for part in ('front', 'rear'):
-            pair = ctx.guards.pair('clamp', part)
-            if (view.angles[pair.outer.joint] <= pair.outer.guard
-                    and view.angles[pair.inner.joint] >= pair.inner.guard):
+            if ctx.guards.pair('clamp', part).closed(view.angles):
                 self.clamp[part] = FULL
         if view.angles['front_tilt'] >= ctx.guards.move('move_front').guard:
             self.lift = 2

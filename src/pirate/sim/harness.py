@@ -66,8 +66,7 @@ class SimHarness(object):
 
     def start_robot(self):
         """What the manager does when a goal starts: PLAY and paced arrays."""
-        self.control.command('play')
-        self.setpoint.enabled = self.limit.enabled = True
+        commands.play(self.control, self.setpoint, self.limit)
         self.setpoint.tick()
 
     def _apply(self):
