@@ -92,7 +92,9 @@ class VizPlotClampTest(unittest.TestCase):
         self.assertEqual([p for _, p in markers], SIMPLE_CLAMP_STRAIGHT)
         times = [t for t, _ in markers]
         self.assertEqual(times, sorted(times))
-        self.assertTrue(0 <= times[0] and times[-1] <= run.times[-1])
+        self.assertTrue(0 <= times[0] and times[-1] <= run.times[-1],
+                        'markers %s outside the recorded states 0..%.3f s (%d states)'
+                        % (markers, run.times[-1], len(run.times)))
         # The clamp's guard lines are drawn and the bends reached them.
         front = drawn[1]
         self.assertTrue(front.guards, 'no guard lines on the clamp front panel')

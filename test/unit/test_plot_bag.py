@@ -48,6 +48,23 @@ def test_read_run(tmp_path):
     assert [t for t, _ in run.markers] == pytest.approx([0.0, 2.0, 4.0])
 
 
+def test_a_primitive_recorded_before_the_first_state_is_at_zero(tmp_path):
+    path = str(tmp_path / 'run.bag')
+    with rosbag.Bag(path, 'w') as out:
+        feedback = PirateActionFeedback()
+        feedback.status.goal_id.id = 'g1'
+        feedback.feedback.primitive = 'move front'
+        out.write(names.PIRATE_ACTION + '/feedback', feedback, rospy.Time.from_sec(50.0))
+        state = RobotState()
+        state.name = list(tables.JOINT_NAMES)
+        state.position = [0.0] * len(tables.JOINT_NAMES)
+        state.effort = [0.0] * len(tables.JOINT_NAMES)
+        out.write(names.ROBOT_STATE_TOPIC, state, rospy.Time.from_sec(50.25))
+    run, _ = bag.read_run(path)
+    assert run.markers == [(0.0, 'move front')]
+    assert run.times == [pytest.approx(0.25)]
+
+
 def test_plot_run_command(tmp_path, capsys):
     path = str(tmp_path / 'run.bag')
     _write(path)

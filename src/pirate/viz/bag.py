@@ -4,7 +4,9 @@ The thin layer between rosbag and the plot: joint angles, efforts and the
 orientation from /pirate/state, the primitive markers from the Pirate
 Server's feedback, the pipe diameter from its goals. Times are the bag's
 record times (sim time when the run used /clock), in s from the first
-recorded state.
+recorded state or feedback, whichever came first: a recorder that connects
+just before a goal can log the first primitive before the first state, and
+that marker still belongs on the plot at t >= 0.
 """
 import rosbag
 
@@ -34,7 +36,7 @@ def read_run(path):
                 diameters.append(msg.goal.pipe_diameter)
     if not states:
         raise ValueError('%s holds no %s messages to plot' % (path, names.ROBOT_STATE_TOPIC))
-    t0 = states[0][0]
+    t0 = min([states[0][0]] + [t for t, _, _ in feedback[:1]])
     joints = list(states[0][1].name)
     positions = {j: [] for j in joints}
     efforts = {j: [] for j in joints}
