@@ -1,37 +1,76 @@
-"""Every ROS message package the Python code imports is declared twice: in
-package.xml (for rosdep and catkin) and in scripts/debian-packages.txt as
-its Debian python3-*-msgs package, which `make test` / `make demo` install.
+"""What the code imports and runs is what the install lists declare.
 
-On Debian the ros-*-msgs packages hold only the .msg files; the Python
-modules come in python3-*-msgs. A machine that happened to have them
-installed hid a missing entry once (the serial node died on a fresh CI
-machine with "No module named 'diagnostic_msgs'"), so the lists are checked
-against the code, not against what this machine has.
+scripts/debian-packages.txt is what `make test` / `make demo` install on a
+fresh machine; package.xml is what rosdep and catkin read. Both are checked
+against the code, not against what this machine happens to have: a machine
+with extra packages once hid a missing entry (on a fresh CI machine the
+serial node died with "No module named 'diagnostic_msgs'": on Debian the
+ros-*-msgs packages hold only the .msg files, the Python modules come in
+python3-*-msgs; and `rosrun` is in rosbash, which nothing else pulls in).
 """
 import os
 import re
+import sys
 import xml.etree.ElementTree as ElementTree
 
 ROOT = os.path.join(os.path.dirname(__file__), '..', '..')
 CODE_DIRS = ('src', 'nodes', 'test', 'bench')
-IMPORT = re.compile(r'^\s*(?:from|import)\s+([a-z0-9_]+_msgs)\b', re.MULTILINE)
+#: Executables without a .py suffix live here.
+SCRIPT_DIRS = ('nodes', 'bench')
+
+#: Third-party Python modules the code imports, and their Debian packages
+#: (message packages are python3-<name with dashes>, checked by rule).
+MODULES = {
+    'rospy': 'python3-rospy', 'actionlib': 'python3-actionlib', 'rosbag': 'python3-rosbag',
+    'rosgraph': 'python3-rosgraph', 'roslaunch': 'python3-roslaunch', 'roslib': 'python3-roslib',
+    'rosnode': 'python3-rosnode', 'rospkg': 'python3-rospkg', 'rostest': 'python3-rostest',
+    'tf2_ros': 'python3-tf2-ros', 'yaml': 'python3-yaml', 'serial': 'python3-serial',
+    'pygame': 'python3-pygame', 'numpy': 'python3-numpy', 'matplotlib': 'python3-matplotlib',
+    'PIL': 'python3-pil', 'hypothesis': 'python3-hypothesis', 'pytest': 'python3-pytest',
+}
+#: The commands the Python code runs as subprocesses, and their Debian packages.
+COMMANDS = {
+    'rosrun': 'rosbash', 'roslaunch': 'python3-roslaunch', 'roscore': 'python3-roslaunch',
+    'rosparam': 'python3-rosparam', 'rostest': 'python3-rostest',
+    'check_urdf': 'liburdfdom-tools', 'Xvfb': 'xvfb',
+    'catkin_make': 'catkin', 'catkin_lint': 'catkin-lint',
+}
+
+#: 'import x' or 'from x[.y] import', capturing x (not a docstring line 'from board 22').
+TOP_IMPORT = re.compile(r'^\s*(?:import\s+(\w+)|from\s+(\w+)[\w.]*\s+import\b)', re.MULTILINE)
+#: A command at the head of a subprocess argument list: ['rosrun', ...
+SUBPROCESS_COMMAND = re.compile(r"""\[\s*['"]([A-Za-z_]\w*)['"]\s*,""")
 
 
-def _python_files():
+def _python_sources():
+    """{path: text} of every Python file of the project."""
+    sources = {}
     for top in CODE_DIRS:
         for folder, _, files in os.walk(os.path.join(ROOT, top)):
             for name in files:
-                path = os.path.join(folder, name)
-                if name.endswith('.py') or (top == 'nodes' and '.' not in name):
-                    yield path
+                if name.endswith('.py') or (top in SCRIPT_DIRS and '.' not in name):
+                    path = os.path.join(folder, name)
+                    with open(path, encoding='utf-8') as source:
+                        sources[path] = source.read()
+    return sources
 
 
-def _imported_msg_packages():
-    found = set()
-    for path in _python_files():
-        with open(path, encoding='utf-8') as source:
-            found.update(IMPORT.findall(source.read()))
-    return found
+def _imported():
+    return {a or b for text in _python_sources().values() for a, b in TOP_IMPORT.findall(text)}
+
+
+def _third_party():
+    local = {'pirate'} | {os.path.splitext(os.path.basename(p))[0] for p in _python_sources()}
+    return _imported() - local - set(sys.stdlib_module_names)
+
+
+def _message_packages():
+    return {m for m in _third_party() if m.endswith('_msgs')}
+
+
+def _commands():
+    return {c for text in _python_sources().values() for c in SUBPROCESS_COMMAND.findall(text)
+            if c.startswith('ros') or c in COMMANDS}
 
 
 def _package_xml_deps():
@@ -45,16 +84,34 @@ def _debian_packages():
         return {line.split()[0] for line in listing if line.strip() and not line.startswith('#')}
 
 
-def test_the_scan_finds_the_message_packages_we_know_we_use():
-    assert {'diagnostic_msgs', 'sensor_msgs', 'actionlib_msgs'} <= _imported_msg_packages()
+def test_the_scans_see_what_we_know_we_use():
+    assert {'diagnostic_msgs', 'sensor_msgs', 'actionlib_msgs'} <= _message_packages()
+    assert {'rospy', 'actionlib', 'yaml'} <= _third_party()
+    assert {'rosrun', 'roslaunch', 'roscore'} <= _commands()
+    assert 'board' not in _imported()   # a docstring line "from board 22 ..." is no import
 
 
 def test_every_imported_message_package_is_in_package_xml():
-    missing = _imported_msg_packages() - _package_xml_deps()
+    missing = _message_packages() - _package_xml_deps()
     assert not missing, 'imported but not declared in package.xml: %s' % sorted(missing)
 
 
-def test_every_imported_message_package_has_its_python_module_installed_by_ensure_deps():
-    wanted = {'python3-' + name.replace('_', '-') for name in _imported_msg_packages()}
+def test_every_imported_message_package_has_its_python_module_listed():
+    wanted = {'python3-' + name.replace('_', '-') for name in _message_packages()}
     missing = wanted - _debian_packages()
+    assert not missing, 'add to scripts/debian-packages.txt: %s' % sorted(missing)
+
+
+def test_every_third_party_module_has_its_package_listed():
+    modules = _third_party() - _message_packages()
+    unknown = modules - set(MODULES)
+    assert not unknown, 'say which Debian package installs %s in MODULES' % sorted(unknown)
+    missing = {MODULES[m] for m in modules} - _debian_packages()
+    assert not missing, 'add to scripts/debian-packages.txt: %s' % sorted(missing)
+
+
+def test_every_command_run_has_its_package_listed():
+    unknown = _commands() - set(COMMANDS)
+    assert not unknown, 'say which Debian package installs %s in COMMANDS' % sorted(unknown)
+    missing = {COMMANDS[c] for c in _commands()} - _debian_packages()
     assert not missing, 'add to scripts/debian-packages.txt: %s' % sorted(missing)
