@@ -15,6 +15,7 @@ Publishing policy (report 4.6):
 
 Pure Python: the ROS publisher and the clock are passed in.
 """
+import contextlib
 import threading
 import time
 
@@ -47,6 +48,22 @@ class CommandArray(object):
             self._logged.add(reason)
             self._log(reason)
 
+    @contextlib.contextmanager
+    def _logging_refusals(self):
+        """Log a refusal once per reason, then let it reach the caller."""
+        try:
+            yield
+        except safety.Refused as refused:
+            self._warn_once(str(refused))
+            raise
+
+    def _check_size(self, values, what):
+        """Refuse (and log once) a whole array of the wrong length."""
+        with self._logging_refusals():
+            if len(values) != self.size:
+                raise safety.Refused('%s array needs %d values, got %d'
+                                     % (what, self.size, len(values)))
+
     def _send(self):
         with self._lock:
             msg = self._make_msg(list(self._values))
@@ -76,11 +93,8 @@ class Setpoint(CommandArray):
         that is not a finite number raises :class:`pirate.safety.Refused`.
         """
         elem = tables.element(name)
-        try:
+        with self._logging_refusals():
             counts, reason = safety.limit_setpoint(name, self._control.mode_of(name), value)
-        except safety.Refused as refused:
-            self._warn_once(str(refused))
-            raise
         self._warn_once(reason)
         with self._lock:
             self._values[elem.index] = counts
@@ -97,8 +111,7 @@ class Setpoint(CommandArray):
 
     def set_all(self, values):
         """Write the whole array (13 values), each through the limits."""
-        if len(values) != self.size:
-            raise safety.Refused('setpoint array needs %d values, got %d' % (self.size, len(values)))
+        self._check_size(values, 'setpoint')
         for elem, value in zip(tables.SETPOINT_ELEMENTS, values):
             self.set(elem.name, value)
 
@@ -117,18 +130,16 @@ class Control(CommandArray):
     def set_mode(self, name, mode):
         """Put element ``name`` in ``mode`` ('pwm', 'torque', ...); publish if changed."""
         index = tables.element(name).index
-        if mode not in safety.MODE_CODES:
-            raise safety.Refused('unknown control mode %r (known: %s)'
-                                 % (mode, sorted(safety.MODE_CODES)))
+        with self._logging_refusals():
+            if mode not in safety.MODE_CODES:
+                raise safety.Refused('unknown control mode %r (known: %s)'
+                                     % (mode, sorted(safety.MODE_CODES)))
         return self.set_code(index, safety.MODE_CODES[mode])
 
     def set_code(self, index, code):
         """Write a raw mode/command code at ``index``; publish at once if changed."""
-        try:
+        with self._logging_refusals():
             safety.check_control_code(index, code)
-        except safety.Refused as refused:
-            self._warn_once(str(refused))
-            raise
         with self._lock:
             changed = self._values[index] != code
             self._values[index] = code
@@ -157,10 +168,10 @@ class Control(CommandArray):
 
     def set_all(self, codes):
         """Write all 12 codes (each checked); publish once if anything changed."""
-        if len(codes) != self.size:
-            raise safety.Refused('control array needs %d codes, got %d' % (self.size, len(codes)))
-        for index, code in enumerate(codes):
-            safety.check_control_code(index, code)
+        self._check_size(codes, 'control')
+        with self._logging_refusals():
+            for index, code in enumerate(codes):
+                safety.check_control_code(index, code)
         with self._lock:
             changed = self._values != list(codes)
             self._values = list(codes)
@@ -181,11 +192,8 @@ class Limit(CommandArray):
 
     def set(self, name, value):
         """Write the torque limit of bend ``name``; return the stored value."""
-        try:
+        with self._logging_refusals():
             counts, reason = safety.limit_torque_limit(name, value)
-        except safety.Refused as refused:
-            self._warn_once(str(refused))
-            raise
         self._warn_once(reason)
         with self._lock:
             self._values[tables.limit_index(name)] = counts
@@ -198,8 +206,7 @@ class Limit(CommandArray):
 
     def set_all(self, values):
         """Write all four limits."""
-        if len(values) != self.size:
-            raise safety.Refused('limit array needs %d values, got %d' % (self.size, len(values)))
+        self._check_size(values, 'limit')
         for name, value in zip(tables.LIMIT_ELEMENTS, values):
             self.set(name, value)
 

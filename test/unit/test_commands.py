@@ -95,6 +95,20 @@ def test_control_set_all_publishes_once(arrays):
     assert control.get_all() == codes
 
 
+def test_whole_array_refusals_are_logged_once_each(arrays):
+    setpoint, control, limit, _, logs = arrays
+    for _ in range(50):
+        for array, values in ((control, [3] * 11 + [42]), (control, [3] * 5),
+                              (setpoint, [0] * 12), (limit, [1, 2, 3])):
+            with pytest.raises(safety.Refused):
+                array.set_all(values)
+    assert len(logs) == 4, logs
+    assert any('42' in line for line in logs)
+    assert any('control array needs 12 values, got 5' in line for line in logs)
+    assert any('setpoint array needs 13 values, got 12' in line for line in logs)
+    assert any('limit array needs 4 values, got 3' in line for line in logs)
+
+
 def test_unknown_control_mode_or_code_refused_and_nothing_sent(arrays):
     _, control, _, pubs, logs = arrays
     with pytest.raises(safety.Refused):
@@ -103,7 +117,7 @@ def test_unknown_control_mode_or_code_refused_and_nothing_sent(arrays):
         with pytest.raises(safety.Refused):
             control.set_code(2, 99)
     assert pubs['control'].sent == []
-    assert len(logs) == 1
+    assert len(logs) == 2 and 'warp' in logs[0] and '99' in logs[1]   # each reason once
 
 
 def test_tick_publishes_only_when_enabled(arrays):
