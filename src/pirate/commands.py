@@ -57,12 +57,12 @@ class CommandArray(object):
             self._warn_once(str(refused))
             raise
 
-    def _check_size(self, values, what):
+    def _check_size(self, values):
         """Refuse (and log once) a whole array of the wrong length."""
         with self._logging_refusals():
             if len(values) != self.size:
                 raise safety.Refused('%s array needs %d values, got %d'
-                                     % (what, self.size, len(values)))
+                                     % (type(self).__name__.lower(), self.size, len(values)))
 
     def _send(self):
         with self._lock:
@@ -111,7 +111,7 @@ class Setpoint(CommandArray):
 
     def set_all(self, values):
         """Write the whole array (13 values), each through the limits."""
-        self._check_size(values, 'setpoint')
+        self._check_size(values)
         for elem, value in zip(tables.SETPOINT_ELEMENTS, values):
             self.set(elem.name, value)
 
@@ -168,7 +168,7 @@ class Control(CommandArray):
 
     def set_all(self, codes):
         """Write all 12 codes (each checked); publish once if anything changed."""
-        self._check_size(codes, 'control')
+        self._check_size(codes)
         with self._logging_refusals():
             for index, code in enumerate(codes):
                 safety.check_control_code(index, code)
@@ -206,7 +206,7 @@ class Limit(CommandArray):
 
     def set_all(self, values):
         """Write all four limits."""
-        self._check_size(values, 'limit')
+        self._check_size(values)
         for name, value in zip(tables.LIMIT_ELEMENTS, values):
             self.set(name, value)
 

@@ -8,6 +8,7 @@ serial node died with "No module named 'diagnostic_msgs'": on Debian the
 ros-*-msgs packages hold only the .msg files, the Python modules come in
 python3-*-msgs; and `rosrun` is in rosbash, which nothing else pulls in).
 """
+import functools
 import os
 import re
 import sys
@@ -42,8 +43,9 @@ TOP_IMPORT = re.compile(r'^\s*(?:import\s+(\w+)|from\s+(\w+)[\w.]*\s+import\b)',
 SUBPROCESS_COMMAND = re.compile(r"""\[\s*['"]([A-Za-z_]\w*)['"]\s*,""")
 
 
+@functools.lru_cache(maxsize=None)
 def _python_sources():
-    """{path: text} of every Python file of the project."""
+    """{path: text} of every Python file of the project, read once per session."""
     sources = {}
     for top in CODE_DIRS:
         for folder, _, files in os.walk(os.path.join(ROOT, top)):

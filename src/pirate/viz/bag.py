@@ -36,7 +36,7 @@ def read_run(path):
                 diameters.append(msg.goal.pipe_diameter)
     if not states:
         raise ValueError('%s holds no %s messages to plot' % (path, names.ROBOT_STATE_TOPIC))
-    t0 = min([states[0][0]] + [t for t, _, _ in feedback[:1]])
+    t0 = min(states[0][0], feedback[0][0]) if feedback else states[0][0]
     joints = list(states[0][1].name)
     positions = {j: [] for j in joints}
     efforts = {j: [] for j in joints}
