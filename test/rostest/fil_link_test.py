@@ -4,7 +4,7 @@
 Each test builds the chain itself: FirmwareInTheLoop (native firmware +
 simulated boards) in this process, and serial_node as a child process on
 the pty, so the test can SIGKILL it. The laptop side is this test
-publishing setpoints at 10 Hz, as pirate.commands.Setpoint.tick does.
+publishing setpoints at 10 Hz, as pirate.robot.commands.Setpoint.tick does.
 
 - command loss: SIGKILL serial_node -> every board stopped within 300 ms of
   the last setpoint that reached the firmware;
@@ -28,7 +28,7 @@ import rostest
 
 from pirate import names
 from pirate.msg import ControlArray, SetpointArray
-from pirate.rosserial.fil import FirmwareInTheLoop, build_native_firmware
+from pirate.link.fil import FirmwareInTheLoop, build_native_firmware
 from pirate.sim.model import PirateModel
 
 SETPOINT_PAYLOAD = 2 * 13          # serialised SetpointArray: how the relay tells it apart

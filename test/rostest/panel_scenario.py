@@ -33,7 +33,8 @@ import ready
 from actionlib_msgs.msg import GoalStatusArray
 from rosgraph_msgs.msg import Log
 
-from pirate import names, tables
+from pirate import names
+from pirate.robot import tables
 from pirate.msg import MidiInput, MidiOutput, PirateActionResult, RobotState, SetpointArray
 
 STATUS = {'active': 1, 'preempted': 2, 'succeeded': 3, 'aborted': 4, 'rejected': 5}

@@ -12,7 +12,8 @@ import rospy
 import rostest
 from rosgraph_msgs.msg import Log
 
-from pirate import commands, names, tables, units
+from pirate import names
+from pirate.robot import commands, tables, units
 from pirate.msg import ControlArray, LimitArray, SetpointArray, SmallState
 from pirate.srv import JointSensors
 

@@ -13,7 +13,7 @@ class Wire(object):
 
 def command_arrays():
     """Setpoint, Control and Limit over recording wires: (wires, setpoint, control, limit)."""
-    from pirate import commands
+    from pirate.robot import commands
     wires = {k: Wire() for k in ('setpoint', 'control', 'limit')}
     control = commands.Control(wires['control'], list)
     setpoint = commands.Setpoint(wires['setpoint'], list, control)

@@ -11,9 +11,9 @@ import itertools
 
 import pytest
 
-from pirate.pabs import clamp_straight as cs
-from pirate.pabs import drive, home
-from pirate.pabs.base import ALWAYS, END, PabFailed, StateMachine, Transition
+from pirate.sequencer.pabs import clamp_straight as cs
+from pirate.sequencer.pabs import drive, home
+from pirate.sequencer.pabs.base import ALWAYS, END, PabFailed, StateMachine, Transition
 
 MACHINE = cs.MACHINE
 NONE, CUSTOM, FULL = cs.NONE, cs.CUSTOM, cs.FULL

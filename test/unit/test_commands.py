@@ -1,7 +1,7 @@
 """Setpoint / Control / Limit (report 4.2-4.4) with a fake publisher."""
 import pytest
 
-from pirate import commands, safety, tables
+from pirate.robot import commands, safety, tables
 from pirate.msg import ControlArray, LimitArray, SetpointArray
 
 

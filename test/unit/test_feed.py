@@ -9,7 +9,7 @@ import time
 
 import pytest
 
-from pirate.feed import Cancelled, FeedbackLost, RobotFeed, RobotView, TimedOut
+from pirate.state.feed import Cancelled, FeedbackLost, RobotFeed, RobotView, TimedOut
 
 BOUND_S = 5.0     # a wait that should end promptly must end within this
 

@@ -8,7 +8,7 @@ import subprocess
 import sys
 
 
-from pirate import tables
+from pirate.robot import tables
 from pirate.msg import SetpointArray
 from pirate.sim import pico_bus
 from pirate.sim.pico_bus import BusFrame, BusParser, SimPicoBoards

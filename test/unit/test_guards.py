@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from pirate.guards import GuardBook, Guards, NoGuards, load_files
+from pirate.sequencer.guards import GuardBook, Guards, NoGuards, load_files
 
 # (primitive, part) -> ((outer joint, setpoint, guard), (inner joint, setpoint, guard))
 # Table 5.2 (SPEC 7), 90 mm and 110 mm columns.

@@ -5,8 +5,8 @@ import os
 
 import pytest
 
-from pirate import commands, safety, tables, units
-from pirate.mapper import Mapper
+from pirate.robot import commands, safety, tables, units
+from pirate.panel.mapper import Mapper
 from pirate.panel import config as panel_config
 
 CONFIG = os.path.join(os.path.dirname(__file__), '..', '..', 'config', 'nanokontrol2.yaml')

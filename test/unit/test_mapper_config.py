@@ -5,7 +5,7 @@ import re
 import pytest
 import yaml
 
-from pirate import tables
+from pirate.robot import tables
 from pirate.panel import config as panel_config
 
 ROOT = os.path.join(os.path.dirname(__file__), '..', '..')

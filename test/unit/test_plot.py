@@ -7,7 +7,7 @@ import os
 import pytest
 import yaml
 
-from pirate import tables
+from pirate.robot import tables
 from pirate.viz import plot
 
 RESULTS = os.path.join(os.path.dirname(__file__), '..', '..', 'test-results')

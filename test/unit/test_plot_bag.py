@@ -9,7 +9,8 @@ rosbag = pytest.importorskip('rosbag', reason='rosbag missing (Debian python3-ro
 import rospy  # noqa: E402
 from pirate.msg import PirateActionFeedback, PirateActionGoal, RobotState  # noqa: E402
 
-from pirate import names, tables  # noqa: E402
+from pirate import names
+from pirate.robot import tables  # noqa: E402
 from pirate.viz import bag, plot_cli  # noqa: E402
 
 RESULTS = os.path.join(os.path.dirname(__file__), '..', '..', 'test-results')

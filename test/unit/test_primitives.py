@@ -8,10 +8,10 @@ import math
 
 import pytest
 
-from pirate import safety, units
-from pirate.feed import Cancelled, RobotView, TimedOut
-from pirate.guards import GuardBook, load_files
-from pirate.primitives import MotionPrimitives, Refused
+from pirate.robot import safety, units
+from pirate.state.feed import Cancelled, RobotView, TimedOut
+from pirate.sequencer.guards import GuardBook, load_files
+from pirate.sequencer.primitives import MotionPrimitives, Refused
 
 from fakes import command_arrays
 
@@ -207,7 +207,7 @@ def test_drive_above_limit_refused(rig, mm_s):
     assert prims.setpoint.get('wheels') == 0 and wires['control'].sent == []
 
 
-# --- safe hold (pirate.hold, issue 3: bends/front PWM 0, wheels 0, rotation held) ---
+# --- safe hold (pirate.robot.hold, issue 3: bends/front PWM 0, wheels 0, rotation held) ---
 
 def test_safe_hold_stops_everything_and_holds_rotation(rig):
     prims, feed, wires = rig

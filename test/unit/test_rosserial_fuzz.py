@@ -16,8 +16,8 @@ import struct
 
 from hypothesis import given, settings, strategies as st, HealthCheck
 
-from pirate.rosserial import protocol
-from pirate.rosserial.protocol import Frame, FrameParser
+from pirate.link import protocol
+from pirate.link.protocol import Frame, FrameParser
 
 MAX_PAYLOAD = 64
 LOOP_STREAMS = 100000

@@ -5,9 +5,9 @@ import struct
 
 import pytest
 
-from pirate.rosserial import messages, protocol, session
-from pirate.rosserial.outbox import Outbox
-from pirate.rosserial.protocol import Frame, FrameParser
+from pirate.link import messages, protocol, session
+from pirate.link.outbox import Outbox
+from pirate.link.protocol import Frame, FrameParser
 
 # The host's topic request: topic 0, empty payload (rosserial_python sends it).
 TOPIC_REQUEST = bytes([0xFF, 0xFE, 0x00, 0x00, 0xFF, 0x00, 0x00, 0xFF])

@@ -1,9 +1,9 @@
-"""pirate.safety: every limit on what goes to the robot (SPEC 3, 7)."""
+"""pirate.robot.safety: every limit on what goes to the robot (SPEC 3, 7)."""
 import math
 
 import pytest
 
-from pirate import safety, tables
+from pirate.robot import safety, tables
 
 BENDS = ('bend_i', 'bend_ii', 'bend_iii', 'bend_iv')
 DUTY_ELEMENTS = ('camera_tilt', 'front_tilt', 'camera_pan', 'front_led', 'rear_led') + BENDS

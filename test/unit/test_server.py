@@ -8,12 +8,12 @@ import math
 
 import pytest
 
-from pirate.feed import RobotFeed, RobotView
-from pirate.guards import GuardBook, load_files
-from pirate.pabs import PABS
-from pirate.pabs.base import Pab
-from pirate.primitives import MotionPrimitives
-from pirate.server import ABORTED, IDLE_UNCLAMPED, PREEMPTED, SUCCEEDED, PirateServer
+from pirate.state.feed import RobotFeed, RobotView
+from pirate.sequencer.guards import GuardBook, load_files
+from pirate.sequencer.pabs import PABS
+from pirate.sequencer.pabs.base import Pab
+from pirate.sequencer.primitives import MotionPrimitives
+from pirate.sequencer.server import ABORTED, IDLE_UNCLAMPED, PREEMPTED, SUCCEEDED, PirateServer
 
 from fakes import command_arrays
 

@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from pirate import safety, tables, units
+from pirate.robot import safety, tables, units
 from pirate.sim import model as sim
 
 UPRIGHT = math.pi / 2

@@ -3,8 +3,8 @@ import math
 
 import pytest
 
-from pirate import tables, units
-from pirate.state import BadState, StateAssembler
+from pirate.robot import tables, units
+from pirate.state.assembler import BadState, StateAssembler
 
 
 def raw(angle=0, bend_load=0, odometry=0, velocity=0):

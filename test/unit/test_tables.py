@@ -1,11 +1,11 @@
-"""pirate.tables against an independent transcription of SPEC Tables 4.1-4.3, B.1.
+"""pirate.robot.tables against an independent transcription of SPEC Tables 4.1-4.3, B.1.
 
 The expected values below are typed from SPEC.md section 3-4, not computed
-from pirate.tables, so a wrong row in either place makes a test fail.
+from pirate.robot.tables, so a wrong row in either place makes a test fail.
 """
 import pytest
 
-from pirate import tables
+from pirate.robot import tables
 from pirate.msg import ControlArray, LimitArray, SetpointArray, SmallState
 
 # SPEC Table 4.1: index -> (board, motor, what).

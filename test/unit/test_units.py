@@ -1,9 +1,9 @@
-"""pirate.units: conversions both ways, int16 wrap, gravity <-> roll."""
+"""pirate.robot.units: conversions both ways, int16 wrap, gravity <-> roll."""
 import math
 
 import pytest
 
-from pirate import units
+from pirate.robot import units
 
 
 @pytest.mark.parametrize('rad', [-math.pi, -1.0, -0.77, 0.0, 0.35, 1.0, math.pi - 0.001])

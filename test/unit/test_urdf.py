@@ -8,7 +8,7 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
-from pirate import tables
+from pirate.robot import tables
 from pirate.viz import pose, urdf_gen
 
 URDF = os.path.join(os.path.dirname(__file__), '..', '..', 'urdf', 'pirate.urdf')

@@ -8,7 +8,7 @@ robot. Pure Python: the map comes in as the dict rosparam loaded (or
 """
 import collections
 
-from pirate import safety, tables
+from pirate.robot import safety, tables
 
 MANUAL, PAB = 'manual', 'pab'
 OPERATION_MODES = (MANUAL, PAB)

@@ -23,7 +23,7 @@ import time
 import rospy
 
 from pirate import names
-from pirate.mapper import Mapper
+from pirate.panel.mapper import Mapper
 from pirate.msg import MidiInput, MidiOutput
 
 TICK_PERIOD_S = 0.1
@@ -42,7 +42,7 @@ class _LedResync(rospy.SubscribeListener):
 
 
 class MapperRos(object):
-    """Wire a :class:`pirate.mapper.Mapper` to the panel topics and a 10 Hz timer."""
+    """Wire a :class:`pirate.panel.mapper.Mapper` to the panel topics and a 10 Hz timer."""
 
     def __init__(self, setpoint, control, limit, pab_client, config=None, publish_arrays=True):
         self.mapper = None

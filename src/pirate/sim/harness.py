@@ -10,13 +10,13 @@ test tier and the benchmarks; the rostests cover the ROS wiring.
 import threading
 import time
 
-from pirate import commands, tables
-from pirate.feed import RobotFeed, RobotView
-from pirate.guards import GuardBook, load_files
-from pirate.primitives import MotionPrimitives
-from pirate.server import PirateServer
+from pirate.robot import commands, tables
+from pirate.state.feed import RobotFeed, RobotView
+from pirate.sequencer.guards import GuardBook, load_files
+from pirate.sequencer.primitives import MotionPrimitives
+from pirate.sequencer.server import PirateServer
 from pirate.sim.model import PirateModel
-from pirate.state import StateAssembler
+from pirate.state.assembler import StateAssembler
 
 PICO_PERIOD_S = 0.02
 STEPS_PER_CYCLE = 5
@@ -35,7 +35,7 @@ class _Wire(object):
 
 
 def view_of(snapshot, stamp):
-    """A :class:`RobotView` from a :class:`pirate.state.Snapshot`."""
+    """A :class:`RobotView` from a :class:`pirate.state.assembler.Snapshot`."""
     return RobotView(dict(zip(snapshot.name, snapshot.position)), snapshot.orientation,
                      snapshot.odometry, snapshot.velocity, stamp)
 

@@ -62,7 +62,7 @@ stalls; with neither clamped the lighter front part turns.
 import math
 import random
 
-from pirate import safety, tables, units
+from pirate.robot import safety, tables, units
 
 MODULE_LENGTH = 0.09
 WHEEL_DIAMETER = 0.046
@@ -136,7 +136,7 @@ class PirateModel(object):
     def command(self, setpoints, modes, limits):
         """Latch the arrays as the boards would take them; return refusals.
 
-        Inputs pass the same rules as the laptop's (pirate.safety): a control
+        Inputs pass the same rules as the laptop's (pirate.robot.safety): a control
         code that does not exist keeps the element's previous code, a setpoint
         beyond what a board takes is clamped. Commands at the command index
         act on their change (a toggle must not re-fire on every repeat).

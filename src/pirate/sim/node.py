@@ -19,7 +19,8 @@ import time
 import rospy
 from rosgraph_msgs.msg import Clock
 
-from pirate import names, tables
+from pirate import names
+from pirate.robot import tables
 from pirate.msg import ControlArray, LimitArray, SetpointArray, SmallState
 from pirate.sim.model import PirateModel
 

@@ -21,7 +21,7 @@ Pure: no ROS, no I/O; bytes and times in, bytes and records out.
 import collections
 import struct
 
-from pirate import safety, tables
+from pirate.robot import safety, tables
 
 START = 0xA5
 BROADCAST = 0xFF

@@ -22,7 +22,7 @@ import math
 
 import matplotlib
 
-from pirate.guards import CLAMP_BENDS
+from pirate.sequencer.guards import CLAMP_BENDS
 
 matplotlib.use('Agg')
 import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
@@ -97,9 +97,9 @@ def _guard_entry(table, primitive):
 def guard_lines(table, primitives):
     """Guard lines {joint: [(primitive, rad)]} of the primitives that ran.
 
-    ``table`` is a parsed config/guards_<mm>.yaml (pirate.guards): pair rows
+    ``table`` is a parsed config/guards_<mm>.yaml (pirate.sequencer.guards): pair rows
     {outer: {guard}, inner: {guard}} for the bends of the primitive's part
-    (pirate.guards.CLAMP_BENDS), single rows {guard} for the front module.
+    (pirate.sequencer.guards.CLAMP_BENDS), single rows {guard} for the front module.
     Primitives without a row (rotate, align) draw no guard line.
     """
     lines = collections.OrderedDict()

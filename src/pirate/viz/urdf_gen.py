@@ -42,7 +42,7 @@ import math
 import sys
 import xml.etree.ElementTree as ET
 
-from pirate import safety
+from pirate.robot import safety
 
 MODULE_LENGTH = 0.09      # m, l in eq 2.1 (report 2.4.1.1)
 WHEEL_DIAMETER = 0.046    # m, D_omega (report 2.4.1.1)

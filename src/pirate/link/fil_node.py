@@ -16,7 +16,7 @@ import rospy
 import rospkg
 from std_msgs.msg import String
 
-from pirate.rosserial.fil import FirmwareInTheLoop, build_native_firmware
+from pirate.link.fil import FirmwareInTheLoop, build_native_firmware
 from pirate.sim.model import PirateModel
 
 

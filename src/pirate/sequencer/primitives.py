@@ -1,13 +1,13 @@
 """Motion primitives (report 4.7.2, 5.9; SPEC 7) and the safe hold.
 
 Basic primitives write a message and return. Advanced ones write, then wait
-on the robot state for their guard (event-driven, :mod:`pirate.feed`), with
+on the robot state for their guard (event-driven, :mod:`pirate.state.feed`), with
 a timeout and an immediate stop on cancel. Guards and setpoints come from
-:class:`pirate.guards.Guards`; limits are those of :mod:`pirate.safety`,
+:class:`pirate.sequencer.guards.Guards`; limits are those of :mod:`pirate.robot.safety`,
 enforced inside the Setpoint/Control classes. Pure Python.
 """
-from pirate import safety, units
-from pirate.hold import safe_hold
+from pirate.robot import safety, units
+from pirate.robot.hold import safe_hold
 
 
 class Refused(ValueError):
@@ -96,7 +96,7 @@ class MotionPrimitives(object):
     def rotate(self, target_rad, name='rotate'):
         """Rotational module to ``target_rad`` from aligned (4.7.2.2).
 
-        Refused beyond +-0.7 rad (pirate.safety); the part that is not
+        Refused beyond +-0.7 rad (pirate.robot.safety); the part that is not
         clamped turns (Table 4.5).
         """
         if not safety.rotation_ok(target_rad):
@@ -127,6 +127,6 @@ class MotionPrimitives(object):
 
     # --- safety -----------------------------------------------------------
     def safe_hold(self):
-        """The safe hold of :mod:`pirate.hold`, with the newest joint angles."""
+        """The safe hold of :mod:`pirate.robot.hold`, with the newest joint angles."""
         view = self.feed.latest()
         return safe_hold(self.setpoint, self.control, view.angles if view else None)

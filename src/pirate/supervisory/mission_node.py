@@ -14,7 +14,7 @@ import rospy
 from actionlib_msgs.msg import GoalStatus
 
 from pirate import names
-from pirate.mission import MissionError, MissionRunner, load_mission
+from pirate.supervisory.mission import MissionError, MissionRunner, load_mission
 from pirate.msg import PirateAction, PirateGoal
 from pirate.srv import ServerStatus
 

@@ -27,7 +27,7 @@ import threading
 import time
 import tty
 
-from pirate.rosserial.protocol import FrameParser
+from pirate.link.protocol import FrameParser
 from pirate.sim import pico_bus
 
 PICO_PERIOD_S = 0.02

@@ -1,12 +1,12 @@
 """The PABs the Pirate Server can run, one table row each.
 
-Adding a PAB: write its class (a :class:`pirate.pabs.base.Pab`) and add a
+Adding a PAB: write its class (a :class:`pirate.sequencer.pabs.base.Pab`) and add a
 row here. The codes are the goal's ``name`` constants of Pirate.action
 (SPEC 6); a unit test checks they match the generated message.
 """
-from pirate.pabs.clamp_straight import ClampStraight
-from pirate.pabs.drive import Drive
-from pirate.pabs.home import Home
+from pirate.sequencer.pabs.clamp_straight import ClampStraight
+from pirate.sequencer.pabs.drive import Drive
+from pirate.sequencer.pabs.home import Home
 
 CLAMP_STRAIGHT, CLAMP_SIDEWAYS, T_JOINT, MITRE_BEND, DRIVE, HOME = range(6)
 

@@ -22,8 +22,8 @@ primitives that succeeded; orientation and rotation come from the robot.
 import collections
 import math
 
-from pirate import safety
-from pirate.pabs.base import ALWAYS, END, Guard, Pab, StateMachine, Transition
+from pirate.robot import safety
+from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, StateMachine, Transition
 
 CHANGE_MODES = 'change control modes'
 MOVING_FRONT = 'moving front'

@@ -3,7 +3,7 @@
 As far as the report went: it assumes a robot clamped straight. Change
 control modes, unclamp front, unclamp rear, move the front module down.
 """
-from pirate.pabs.base import ALWAYS, END, Pab, StateMachine, Transition
+from pirate.sequencer.pabs.base import ALWAYS, END, Pab, StateMachine, Transition
 
 CHANGE_MODES = 'change control modes'
 UNCLAMPING_FRONT = 'unclamping front'

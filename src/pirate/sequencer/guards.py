@@ -10,6 +10,8 @@ import os
 
 import yaml
 
+from pirate import paths
+
 #: One bend's part of a clamp/unclamp: setpoint (counts) and guard (rad).
 BendGuard = collections.namedtuple('BendGuard', 'joint setpoint guard')
 
@@ -41,7 +43,7 @@ MoveGuard = collections.namedtuple('MoveGuard', 'kind setpoint guard')
 #: Which bends make each clamp (SPEC 2): (outer, inner).
 CLAMP_BENDS = {'front': ('bend_i', 'bend_ii'), 'rear': ('bend_iv', 'bend_iii')}
 
-CONFIG_DIR = os.path.join(os.path.dirname(__file__), '..', '..', 'config')
+CONFIG_DIR = paths.CONFIG_DIR
 
 
 class NoGuards(KeyError):

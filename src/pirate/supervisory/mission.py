@@ -8,7 +8,7 @@ import collections
 
 import yaml
 
-from pirate.pabs import PABS
+from pirate.sequencer.pabs import PABS
 
 Step = collections.namedtuple('Step', 'pab code pipe_diameter distance speed option')
 Mission = collections.namedtuple('Mission', 'name steps')

@@ -1,6 +1,6 @@
 """Pirate Server (report 4.7, 5.8): checks goals, runs PABs, one exit path.
 
-Pure Python; :mod:`pirate.manager_node` wires it to an actionlib
+Pure Python; :mod:`pirate.sequencer.manager_node` wires it to an actionlib
 ActionServer. Rules:
 - a goal it cannot do is refused at once with the reason (unknown or
   unbuilt PAB, no guards for the diameter, out-of-range drive, robot not
@@ -15,12 +15,12 @@ import collections
 import threading
 import traceback
 
-from pirate import feed as feeds
-from pirate import safety
-from pirate.guards import NoGuards
-from pirate.pabs import PABS
-from pirate.pabs.base import PabFailed
-from pirate.primitives import Refused
+from pirate.state import feed as feeds
+from pirate.robot import safety
+from pirate.sequencer.guards import NoGuards
+from pirate.sequencer.pabs import PABS
+from pirate.sequencer.pabs.base import PabFailed
+from pirate.sequencer.primitives import Refused
 
 IDLE_UNCLAMPED = 'Idle Unclamped'
 IDLE_CLAMPED = 'Idle Clamped'

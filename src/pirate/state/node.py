@@ -17,7 +17,7 @@ from sensor_msgs.msg import Imu, JointState
 from pirate import names
 from pirate.msg import RobotState, SmallState
 from pirate.srv import ImuSensor, ImuSensorResponse, JointSensors, JointSensorsResponse
-from pirate.state import BadState, StateAssembler
+from pirate.state.assembler import BadState, StateAssembler
 
 
 def roll_quaternion(orientation):

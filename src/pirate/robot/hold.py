@@ -14,7 +14,7 @@ lost feedback), by the manager on shutdown, and by the Mapper's Stop.
   so it stays put instead of aligning to 0.
 Cameras and LEDs are the operator's (allowed in PAB mode) and are left alone.
 """
-from pirate import safety, units
+from pirate.robot import safety, units
 
 HOLD_PWM = ('bend_i', 'bend_ii', 'bend_iii', 'bend_iv', 'front_tilt')
 

@@ -12,7 +12,7 @@ dropped whole, with a reason the node logs once; the previous values stay.
 import collections
 import math
 
-from pirate import tables, units
+from pirate.robot import tables, units
 
 #: Newest data older than this (s, monotonic) makes the state stale: three
 #: Mega cycles of 0.1 s missed.

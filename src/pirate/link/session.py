@@ -19,7 +19,7 @@ sends the link back to ``negotiating``.
 """
 import collections
 
-from pirate.rosserial import messages, protocol
+from pirate.link import messages, protocol
 
 DOWN, NEGOTIATING, UP = 'down', 'negotiating', 'up'
 

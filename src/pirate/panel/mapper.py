@@ -19,7 +19,7 @@ Rules it enforces (and why):
   touches a setpoint (report 3.3);
 - in PAB mode only the controls whose map entry lists ``pab`` work; the
   operator is told once per mode entry;
-- limits are not checked here: every write goes through pirate.safety inside
+- limits are not checked here: every write goes through pirate.robot.safety inside
   Setpoint / Limit.
 
 Bad input (unknown channel, value outside 0-127 or not an integer, a burst
@@ -30,8 +30,8 @@ passed in, so every rule is unit-tested without ROS.
 """
 import threading
 
-from pirate import commands, safety, tables
-from pirate.hold import safe_hold
+from pirate.robot import commands, safety, tables
+from pirate.robot.hold import safe_hold
 from pirate.panel import config as panel_config
 from pirate.panel.config import MANUAL, PAB
 
@@ -44,7 +44,7 @@ class Mapper(object):
     """Translate MidiInput (channel, value) events for one panel map.
 
     ``config``: a :class:`pirate.panel.config.PanelConfig` (or the raw param
-    dict). ``setpoint``/``control``/``limit``: the shared pirate.commands
+    dict). ``setpoint``/``control``/``limit``: the shared pirate.robot.commands
     objects. ``pab_client``: ``send_goal(name_code, pipe_diameter, option) ->
     (accepted, message)``, ``cancel()``, ``is_active() -> bool``.
     ``led(button, on)`` lights a panel LED; ``log(text)`` tells the operator;
@@ -242,7 +242,7 @@ class Mapper(object):
     # --- outputs ---------------------------------------------------------------
 
     def safe_setpoints(self):
-        """The safe hold (pirate.hold), sent at once (Stop)."""
+        """The safe hold (pirate.robot.hold), sent at once (Stop)."""
         safe_hold(self._setpoint, self._control)
 
     def _send_code(self, index, code):

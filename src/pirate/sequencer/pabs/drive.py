@@ -11,8 +11,8 @@ eq 5.3: x = (v0 + vf) t / 2 with v0 = 0, so t = 2 x / vf.
 """
 import math
 
-from pirate import safety
-from pirate.pabs.base import ALWAYS, END, Pab, PabFailed, StateMachine, Transition
+from pirate.robot import safety
+from pirate.sequencer.pabs.base import ALWAYS, END, Pab, PabFailed, StateMachine, Transition
 
 DRIVING = 'driving'
 STOPPING = 'stopping'

@@ -22,13 +22,14 @@ import time
 import actionlib
 import rospy
 
-from pirate import commands, names
-from pirate.feed import RobotFeed, RobotView
-from pirate.guards import GuardBook
+from pirate import names
+from pirate.robot import commands
+from pirate.state.feed import RobotFeed, RobotView
+from pirate.sequencer.guards import GuardBook
 from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, PirateGoal,
                         PirateResult, RobotState, SetpointArray)
-from pirate.primitives import MotionPrimitives
-from pirate.server import ABORTED, PREEMPTED, SUCCEEDED, PirateServer
+from pirate.sequencer.primitives import MotionPrimitives
+from pirate.sequencer.server import ABORTED, PREEMPTED, SUCCEEDED, PirateServer
 from pirate.srv import ServerStatus, ServerStatusResponse
 
 SHUTDOWN_FLUSH_S = 0.3

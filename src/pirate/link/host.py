@@ -22,10 +22,10 @@ import rospy
 import roslib.message
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 
-from pirate.rosserial import session as sessions
-from pirate.rosserial.link import SerialLink
-from pirate.rosserial.outbox import Outbox
-from pirate.rosserial.protocol import FrameParser, encode
+from pirate.link import session as sessions
+from pirate.link.port import SerialLink
+from pirate.link.outbox import Outbox
+from pirate.link.protocol import FrameParser, encode
 
 _LOG = {'debug': rospy.logdebug, 'info': rospy.loginfo, 'warn': rospy.logwarn,
         'error': rospy.logerr, 'fatal': rospy.logfatal}

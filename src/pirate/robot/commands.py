@@ -3,7 +3,7 @@
 One instance of each lives in the pirate_manager process and is shared by
 every writer (Mapper, Pirate Server, motion primitives), so a mode switch
 never resets a setpoint (report 3.3). Every write passes through
-:mod:`pirate.safety`; nothing else checks limits.
+:mod:`pirate.robot.safety`; nothing else checks limits.
 
 Publishing policy (report 4.6):
 - setpoints and limits are *marked* by writers and sent by :meth:`tick`,
@@ -19,7 +19,7 @@ import contextlib
 import threading
 import time
 
-from pirate import safety, tables
+from pirate.robot import safety, tables
 
 
 class CommandArray(object):
@@ -90,7 +90,7 @@ class Setpoint(CommandArray):
         """Write element ``name``; return the counts actually stored.
 
         Out-of-range values are clamped (and the reason logged once); a value
-        that is not a finite number raises :class:`pirate.safety.Refused`.
+        that is not a finite number raises :class:`pirate.robot.safety.Refused`.
         """
         elem = tables.element(name)
         with self._logging_refusals():

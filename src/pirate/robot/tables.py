@@ -16,7 +16,7 @@ Element = collections.namedtuple('Element', 'index board motor name modes')
 PWM, VELOCITY, POSITION, TORQUE = 'pwm', 'velocity', 'position', 'torque'
 
 #: Table 4.1: setpoint array, 13 elements. ``name`` is the element's role in
-#: the robot's language; joints use the joint names of pirate.tables.JOINTS.
+#: the robot's language; joints use the joint names of pirate.robot.tables.JOINTS.
 SETPOINT_ELEMENTS = (
     Element(0, 20, 0, 'camera_tilt', (PWM, POSITION)),
     Element(1, 21, 0, 'front_tilt', (PWM, POSITION)),

@@ -19,7 +19,7 @@ Limits and where they come from:
 """
 import math
 
-from pirate import tables, units
+from pirate.robot import tables, units
 
 DUTY_MAX = 256
 DRIVE_MAX_MM_S = 170.0

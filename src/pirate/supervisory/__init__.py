@@ -1,0 +1,1 @@
+"""The Supervisory layer (report 3.2): missions made of PABs."""
