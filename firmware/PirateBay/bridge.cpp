@@ -24,11 +24,14 @@ int16_t signed_copy(int16_t value, int8_t sign) {
 }  // namespace
 
 Bridge::Bridge()
-    : ros_(0), armed_(false), stop_pending_(true), waiting_(false), last_setpoint_ms_(0),
+    : ros_(0), armed_(false), stop_pending_(true), waiting_(false), control_known_(false),
+      limits_known_(false), last_setpoint_ms_(0),
       cycle_start_ms_(0), request_ms_(0), next_row_(BOARD_COUNT), seq_(0) {
   memset(&counters, 0, sizeof counters);
   memset(setpoint_, 0, sizeof setpoint_);
   memset(control_, 0, sizeof control_);
+  memset(missed_, 0, sizeof missed_);
+  memset(reported_silent_, 0, sizeof reported_silent_);
   for (uint8_t i = 0; i < LIMIT_SIZE; ++i) limit_[i] = NO_LIMIT;
 }
 
@@ -41,11 +44,16 @@ void Bridge::on_configured(uint32_t) { disarm(); }  // fresh setpoint needed aft
 
 void Bridge::on_unconfigured(uint32_t) { disarm(); }
 
-void Bridge::on_message(uint16_t topic, const uint8_t *payload, uint16_t len, uint32_t now) {
+void Bridge::on_message(uint16_t topic, const uint8_t *payload, uint16_t len, bool fresh,
+                        uint32_t now) {
   if (topic == TOPIC_SETPOINT_ID && len == 2 * SETPOINT_SIZE) {
+    if (!fresh) {  // buffered before a trip or a handshake: never applied
+      ++counters.stale_setpoints;
+      return;
+    }
     for (uint8_t i = 0; i < SETPOINT_SIZE; ++i) setpoint_[i] = read_i16(payload + 2 * i);
     last_setpoint_ms_ = now;
-    armed_ = true;
+    armed_ = control_known_ && limits_known_;
     ++counters.setpoints;
   } else if (topic == TOPIC_CONTROL_ID && len == 2 * CONTROL_SIZE) {
     for (uint8_t i = 0; i < CONTROL_SIZE; ++i) {
@@ -56,9 +64,11 @@ void Bridge::on_message(uint16_t topic, const uint8_t *payload, uint16_t len, ui
       }
     }
     for (uint8_t i = 0; i < CONTROL_SIZE; ++i) control_[i] = read_i16(payload + 2 * i);
+    control_known_ = true;
     ++counters.controls;
   } else if (topic == TOPIC_LIMITS_ID && len == 2 * LIMIT_SIZE) {
     for (uint8_t i = 0; i < LIMIT_SIZE; ++i) limit_[i] = (uint16_t)read_i16(payload + 2 * i);
+    limits_known_ = true;
     ++counters.limits;
   } else {
     ++counters.rejected;
@@ -90,11 +100,12 @@ void Bridge::poll(uint32_t now) {
   if (armed_ && (uint32_t)(now - last_setpoint_ms_) > WATCHDOG_MS) {
     ++counters.watchdog_trips;
     disarm();
-    if (ros_) ros_->drop_configuration(now);
+    if (ros_) ros_->close_gate(now);
   }
   if (waiting_ && (uint32_t)(now - request_ms_) > PIRATE_BUS_REPLY_TIMEOUT_MS) {
     ++counters.bus_timeouts;
     waiting_ = false;
+    if (next_row_ < BOARD_COUNT) on_missed_reply(next_row_);
     ++next_row_;
   }
   if (waiting_) return;  // half duplex: never talk over a board's reply
@@ -120,6 +131,7 @@ void Bridge::on_bus_byte(uint8_t b, uint32_t now) {
       reply_.seq() != seq_)
     return;  // not the board we asked: keep waiting until the timeout
   waiting_ = false;
+  on_reply(next_row_);
   ++next_row_;
   uint8_t msg[1 + 2 * SMALL_STATE_SIZE];
   msg[0] = reply_.addr();
@@ -129,4 +141,31 @@ void Bridge::on_bus_byte(uint8_t b, uint32_t now) {
     msg[2 + 2 * i] = v >> 8;
   }
   if (ros_ && ros_->publish(TOPIC_SMALL_STATE_ID, msg, sizeof msg)) ++counters.states;
+}
+
+void Bridge::on_missed_reply(uint8_t row) {
+  if (missed_[row] < 255) ++missed_[row];
+  if (missed_[row] >= BOARD_SILENT_AFTER && !reported_silent_[row] &&
+      report(ROS_LOG_WARN, row, "not answering")) {
+    reported_silent_[row] = true;  // once per episode, and only once the log went out
+    ++counters.silent_reports;
+  }
+}
+
+void Bridge::on_reply(uint8_t row) {
+  missed_[row] = 0;
+  if (reported_silent_[row] && report(ROS_LOG_INFO, row, "answering again"))
+    reported_silent_[row] = false;
+}
+
+// "Pirate Bay: board 22 not answering": fixed text, the board id in digits.
+bool Bridge::report(uint8_t level, uint8_t row, const char *what) {
+  char text[48] = "Pirate Bay: board ";
+  uint8_t n = (uint8_t)strlen(text);
+  text[n++] = (char)('0' + kBoards[row].board / 10);
+  text[n++] = (char)('0' + kBoards[row].board % 10);
+  text[n++] = ' ';
+  strncpy(text + n, what, sizeof text - n - 1);
+  text[sizeof text - 1] = 0;
+  return ros_ && ros_->log(level, text);
 }

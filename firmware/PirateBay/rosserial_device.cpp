@@ -44,8 +44,9 @@ bool is_subscribed(uint16_t topic) {
 
 RosserialDevice::RosserialDevice(RosHandler *handler)
     : handler_(handler), state_(SYNC), len_(0), index_(0), topic_(0), sum_(0),
-      last_byte_ms_(0), last_rx_ms_(0), last_sync_ms_(0), negotiating_(false),
-      configured_(false) {
+      last_byte_ms_(0), last_rx_ms_(0), last_sync_ms_(0),
+      last_announce_ms_(0u - ROS_ANNOUNCE_PERIOD_MS), in_flight_count_(0), gate_(1),
+      negotiating_(false), configured_(false) {
   memset(&counters, 0, sizeof counters);
 }
 
@@ -113,24 +114,42 @@ void RosserialDevice::feed(uint8_t b, uint32_t now) {
 void RosserialDevice::handle_frame(uint32_t now) {
   last_rx_ms_ = now;
   if (topic_ == ROS_ID_PUBLISHER && len_ == 0) {
-    negotiate(now);
+    unconfigure(now);  // the host (re)started: a new session
+    announce(now);
   } else if (topic_ == ROS_ID_TIME) {
-    if (negotiating_ && len_ == 8) {
-      negotiating_ = false;
-      configured_ = true;
-      handler_->on_configured(now);
-    }
+    if (len_ == 8) on_time_reply(now);
   } else if (topic_ == ROS_ID_TX_STOP) {
     unconfigure(now);
-  } else if (configured_ && is_subscribed(topic_)) {
-    handler_->on_message(topic_, in_, len_, now);
+  } else if (is_subscribed(topic_)) {
+    bool fresh_now = fresh();
+    if (!fresh_now) ++counters.stale;
+    handler_->on_message(topic_, in_, len_, fresh_now, now);
   } else {
     ++counters.unknown_topic;
   }
 }
 
-void RosserialDevice::negotiate(uint32_t now) {
-  unconfigure(now);
+void RosserialDevice::on_time_reply(uint32_t now) {
+  last_announce_ms_ = now;  // the host is answering: no need to announce again yet
+  if (in_flight_count_) {  // FIFO: the reply answers the oldest request in flight
+    --in_flight_count_;
+    memmove(in_flight_, in_flight_ + 1, in_flight_count_ * sizeof in_flight_[0]);
+  }
+  if (!gate_) return;
+  if (--gate_) {
+    request_time(now);  // ping-pong: the next reply we need is one round trip away
+    return;
+  }
+  if (negotiating_) {
+    negotiating_ = false;
+    configured_ = true;
+    handler_->on_configured(now);
+  }
+}
+
+void RosserialDevice::announce(uint32_t now) {
+  last_announce_ms_ = now;
+  ++counters.announcements;
   for (uint8_t i = 0; i < TOPIC_COUNT; ++i) {
     const TopicDef &t = kTopics[i];
     Writer w = {out_, ROS_OUT_BUF, 0, true};
@@ -138,10 +157,16 @@ void RosserialDevice::negotiate(uint32_t now) {
     w.str(t.name);
     w.str(t.type);
     w.str(t.md5);
-    w.u32(ROS_IN_BUF);
+    w.u32(t.subscriber ? ROS_IN_BUF : ROS_OUT_BUF);  // as ros_lib: the buffer for that direction
     if (w.ok) send(t.subscriber ? ROS_ID_SUBSCRIBER : ROS_ID_PUBLISHER, out_, w.pos);
   }
   negotiating_ = true;
+  close_gate(now);
+}
+
+void RosserialDevice::close_gate(uint32_t now) {
+  forget_lost_requests(now);
+  gate_ = in_flight_count_ + 1;
   request_time(now);
 }
 
@@ -152,18 +177,43 @@ void RosserialDevice::unconfigure(uint32_t now) {
   if (was) handler_->on_unconfigured(now);
 }
 
+void RosserialDevice::forget_lost_requests(uint32_t now) {
+  uint8_t lost = 0;
+  while (lost < in_flight_count_ && (uint32_t)(now - in_flight_[lost]) > ROS_REQUEST_LOST_MS) ++lost;
+  if (!lost) return;
+  in_flight_count_ -= lost;
+  memmove(in_flight_, in_flight_ + lost, in_flight_count_ * sizeof in_flight_[0]);
+}
+
 void RosserialDevice::request_time(uint32_t now) {
   last_sync_ms_ = now;
-  send(ROS_ID_TIME, 0, 0);
+  forget_lost_requests(now);
+  if (in_flight_count_ >= ROS_IN_FLIGHT_MAX) return;  // never lose count of one in flight
+  in_flight_[in_flight_count_++] = now;
+  const uint8_t zero_time[8] = {0, 0, 0, 0, 0, 0, 0, 0};  // std_msgs/Time, as ros_lib sends
+  send(ROS_ID_TIME, zero_time, sizeof zero_time);
 }
 
 void RosserialDevice::poll(uint32_t now) {
-  if (!configured_ && !negotiating_) return;
+  if (!configured_) {
+    if ((uint32_t)(now - last_announce_ms_) >= ROS_ANNOUNCE_PERIOD_MS) announce(now);
+    return;
+  }
   if ((uint32_t)(now - last_rx_ms_) > ROS_LINK_TIMEOUT_MS) {
     unconfigure(now);
     return;
   }
-  if ((uint32_t)(now - last_sync_ms_) >= ROS_SYNC_PERIOD_MS) request_time(now);
+  uint32_t period = gate_ ? ROS_GATE_PERIOD_MS : ROS_SYNC_PERIOD_MS;
+  if ((uint32_t)(now - last_sync_ms_) >= period) request_time(now);
+}
+
+bool RosserialDevice::log(uint8_t level, const char *text) {
+  Writer w = {out_, ROS_OUT_BUF, 0, true};
+  w.byte(level);
+  w.str(text);
+  if (!w.ok || !configured_) return false;
+  send(ROS_ID_LOG, out_, w.pos);
+  return true;
 }
 
 bool RosserialDevice::publish(uint16_t topic, const uint8_t *payload, uint16_t len) {

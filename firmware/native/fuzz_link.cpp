@@ -33,13 +33,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   std::vector<uint8_t> fed;
   std::vector<uint8_t> start = ros_frame(0, {});
   std::vector<uint8_t> time = ros_frame(10, {0, 0, 0, 0, 0, 0, 0, 0});
+  std::vector<uint8_t> control = ros_frame(TOPIC_CONTROL_ID, int16_payload({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}));
+  std::vector<uint8_t> limits = ros_frame(TOPIC_LIMITS_ID, int16_payload({1, 1, 1, 1}));
   std::vector<uint8_t> initial = ros_frame(TOPIC_SETPOINT_ID, int16_payload({7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7}));
-  for (auto *part : {&start, &time, &initial})
+  for (auto *part : {&start, &time, &control, &limits, &initial})
     for (uint8_t b : *part) {
       bay.ros.feed(b, fake::now_ms);
       fed.push_back(b);
     }
-  if (!bay.bridge.armed()) fail("handshake + setpoint did not arm");
+  if (!bay.bridge.armed()) fail("handshake + control + limits + setpoint did not arm");
   int16_t before[SETPOINT_SIZE];
   for (int i = 0; i < SETPOINT_SIZE; ++i) before[i] = bay.bridge.setpoint(i);
   for (size_t k = 0; k < size; ++k) {
