@@ -139,8 +139,9 @@ def test_session_handshake_then_up():
     reply, events = _handshake(sess)
     assert reply == protocol.encode(protocol.ID_TIME, messages.encode_time(12, 500000000))
     assert ('link', session.UP) in events
-    assert sess.subscriber_id('/pirate/setpoint_array') == 101
-    assert sess.subscriber_id('/nothing') is None
+    assert sess.subscriber('/pirate/setpoint_array').topic_id == 101
+    assert sess.subscriber('/nothing') is None
+    assert sess.buffer_size(101) == 64 and sess.buffer_size(150) == 0
 
 
 def test_session_not_up_without_time_request():
@@ -153,14 +154,66 @@ def test_session_not_up_without_time_request():
     assert sess.tick(1.0)[0] == TOPIC_REQUEST
 
 
-def test_session_lost_sync_after_silence():
-    sess = session.HostSession(sync_timeout=1.0)
+def _stream(sess, start, period, count):
+    """The device sends a frame every ``period`` s; return the last time."""
+    t = start
+    for _ in range(count):
+        t += period
+        sess.on_frame(Frame(100, b'x'), t, 0)
+    return t
+
+
+def test_session_lost_sync_after_silence_of_a_streaming_device():
+    sess = session.HostSession(sync_timeout=0.5)
     _handshake(sess)
-    assert sess.tick(0.9) == (b'', [])
-    data, events = sess.tick(1.1)
+    last = _stream(sess, 0.0, 0.011, 40)        # 90 frames/s
+    assert sess.lost_after() == 0.5
+    assert sess.tick(last + 0.45) == (b'', [])
+    data, events = sess.tick(last + 0.55)
     assert data == TOPIC_REQUEST
     assert ('link', session.NEGOTIATING) in events
     assert sess.lost_syncs == 1 and not sess.subscribers
+
+
+def test_session_does_not_flap_with_a_device_that_syncs_every_2_5_s():
+    # issue 12 point 2: 107 lost syncs in 55 s at a fixed 0.5 s timeout
+    sess = session.HostSession(sync_timeout=0.5)
+    _handshake(sess)
+    t = 0.0
+    for _ in range(22):                          # 55 s of time requests only
+        for step in range(25):
+            assert sess.tick(t + step * 0.1)[1] == []
+        t += 2.5
+        sess.on_frame(Frame(protocol.ID_TIME, bytes(8)), t, 0)
+    assert sess.lost_syncs == 0 and sess.state == session.UP
+    assert 7.0 <= sess.lost_after() <= 15.0
+    assert sess.tick(t + 7.6)[1][-1] == ('link', session.NEGOTIATING)
+
+
+def test_session_takes_service_topic_info_while_up():
+    # issue 12 point 2: a ServiceServer's TopicInfo is no device reset
+    sess = session.HostSession()
+    _handshake(sess)
+    for kind, topic_id in ((2, 120), (3, 121), (4, 122), (5, 123)):
+        info = messages.TopicInfo(topic_id, '/srv', 'std_srvs/Trigger', 'md5', 300)
+        data, events = sess.on_frame(Frame(kind, messages.encode_topic_info(info)), 0.1, 0)
+        assert data == b'' and events[0].kind == 'service'
+    assert sess.state == session.UP and sess.lost_syncs == 0
+    assert sess.on_frame(Frame(120, b'r'), 0.2, 0)[1] == [('service_frame', (120, b'r'))]
+    assert sess.services[121][:2] == ('server', 'request')
+    assert sess.services[122][:2] == ('client', 'request')
+    assert sess.buffer_size(121) == 300
+    assert sess.max_publish_size() == 512
+
+
+def test_session_takes_topic_info_again_and_larger_buffers():
+    # a reset device announces itself while we are up: no renegotiation
+    sess = session.HostSession()
+    _handshake(sess)
+    info = messages.TopicInfo(100, '/pirate/Small_State', 'pirate/SmallState', 'md5', 1024)
+    data, events = sess.on_frame(Frame(0, messages.encode_topic_info(info)), 0.1, 0)
+    assert data == b'' and events == [('publisher', info)] and sess.state == session.UP
+    assert sess.max_publish_size() == 1024
 
 
 def test_session_unknown_topic_means_device_reset():
@@ -180,11 +233,31 @@ def test_session_rejects_bad_topic_info():
     assert events[0].kind == 'error' and not sess.publishers
 
 
-def test_session_answers_param_request_empty():
+def test_session_asks_owner_for_param_and_encodes_as_ros_lib_expects():
     sess = session.HostSession()
     sess.opened(0.0)
-    data, _ = sess.on_frame(Frame(protocol.ID_PARAMETER_REQUEST, b''), 0.0, 0)
-    assert FrameParser().feed(data) == [Frame(protocol.ID_PARAMETER_REQUEST, bytes(12))]
+    request = struct.pack('<I', 5) + b'~gain'
+    data, events = sess.on_frame(Frame(protocol.ID_PARAMETER_REQUEST, request), 0.0, 0)
+    assert data == b'' and events == [('param', '~gain')]
+    reply = FrameParser().feed(sess.param_reply([1, 2]))[0]
+    assert reply.topic == protocol.ID_PARAMETER_REQUEST
+    assert reply.payload == struct.pack('<IiiII', 2, 1, 2, 0, 0)
+    assert messages.encode_param_value(True) == struct.pack('<IiII', 1, 1, 0, 0)
+    assert messages.encode_param_value(0.5) == struct.pack('<IIfI', 0, 1, 0.5, 0)
+    assert messages.encode_param_value('ab') == struct.pack('<IIII', 0, 0, 1, 2) + b'ab'
+    for bad in ({'a': 1}, [1, 'a'], [], None):
+        with pytest.raises(ValueError):
+            messages.encode_param_value(bad)
+
+
+def test_other_protocol_version_is_counted_with_its_byte():
+    hydro_minus = bytes([0xFF, 0xFD]) + TOPIC_REQUEST[2:]
+    parser = FrameParser()
+    assert parser.feed(hydro_minus + TX_STOP) == [Frame(11, b'')]
+    assert parser.stats.version_errors == 1 and parser.last_version == 0xFD
+    garbage = FrameParser()
+    garbage.feed(bytes([0xFF, 0x12, 0x34, 0x56, 0x00]))   # no valid length checksum
+    assert garbage.stats.version_errors == 0
 
 
 # -- outbox ------------------------------------------------------------------

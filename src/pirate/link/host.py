@@ -12,7 +12,20 @@ Two threads around the pure parts:
   port bytes are discarded; the firmware, for its part, ignores anything
   that reaches it after its watchdog tripped until a new handshake.
 
-Diagnostics (diagnostic_msgs/DiagnosticArray on /diagnostics) at 1 Hz.
+What a ros_lib device may use is served (firmware/README.md, "Host"):
+publishers and subscribers (a topic announced again with another type is
+recreated), services both ways (:mod:`.service_bridge`), parameters from
+the parameter server, logs at their level, time. A message larger than the
+buffer the device announced for that topic is refused with an error, as
+rosserial_python does. The laptop's command state survives the link
+(issue #14.3): the latest message of every *latched* publisher the device
+subscribes to is re-sent whenever the link comes up and whenever the
+device announces that subscriber again (after a reset), so control modes
+reach the boards before any setpoint.
+
+Diagnostics (diagnostic_msgs/DiagnosticArray on /diagnostics) at 1 Hz; a
+frame of another rosserial protocol version makes it ERROR with
+rosserial_python's words, and is logged as an error.
 """
 import io
 import threading
@@ -24,8 +37,13 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 
 from pirate.link import session as sessions
 from pirate.link.port import SerialLink
+from pirate.link.service_bridge import ServiceBridge
 from pirate.link.outbox import Outbox
-from pirate.link.protocol import FrameParser, encode
+from pirate.link.protocol import PROTOCOL_VERSION, FrameParser, encode
+
+# rosserial_python's words, so a lab's search for them finds this too.
+MISMATCHED_PROTOCOL = ('Mismatched protocol version in packet: lost sync or rosserial_python '
+                       'is from different ros release than the rosserial client')
 
 _LOG = {'debug': rospy.logdebug, 'info': rospy.loginfo, 'warn': rospy.logwarn,
         'error': rospy.logerr, 'fatal': rospy.logfatal}
@@ -45,9 +63,12 @@ class RosserialHost(object):
         self._publishers = {}                 # topic name -> (class, rospy.Publisher)
         self._subscribers = {}                # topic name -> rospy.Subscriber
         self._device_pub = {}                 # device topic id -> topic name
+        self._latched = {}                    # topic name -> last payload of a latched publisher
         self._logged = {}
+        self._versions_logged = set()
         self.counts = dict(frames_out=0, link_ups=0, link_downs=0, deserialize_errors=0,
-                           not_up_dropped=0)
+                           not_up_dropped=0, oversize_refused=0, params_served=0)
+        self.services = ServiceBridge(self._send_frame, self._warn)
         self._diag_pub = rospy.Publisher('/diagnostics', DiagnosticArray, queue_size=2)
         self._threads = [threading.Thread(target=self._read_loop, name='rosserial-reader'),
                          threading.Thread(target=self._write_loop, name='rosserial-writer')]
@@ -55,11 +76,11 @@ class RosserialHost(object):
     @classmethod
     def from_params(cls):
         """Build from private params: ``~port`` (default /dev/ttyACM0), ``~baud``
-        (57600, rosserial's default; 115200 supported), ``~sync_timeout`` (s of
-        device silence before the link counts as lost and topics are
-        requested again; 0.5 suits the Pirate Bay, which streams Small State
-        every 100 ms; use about 6 for a device that publishes nothing and
-        only syncs time), ``~max_age`` (s, oldest command ever sent, 0.2)."""
+        (57600, rosserial's default; 115200 supported), ``~sync_timeout`` (s,
+        the shortest device silence that counts as lost sync, 0.5; the
+        actual limit follows the device's own frame gaps, see
+        :meth:`.session.HostSession.lost_after`), ``~max_age`` (s, oldest
+        command ever sent, 0.2)."""
         return cls(rospy.get_param('~port', '/dev/ttyACM0'),
                    int(rospy.get_param('~baud', 57600)),
                    float(rospy.get_param('~sync_timeout', 0.5)),
@@ -112,6 +133,7 @@ class RosserialHost(object):
                     reply, events = self.session.on_frame(frame, now, rospy.get_time())
                     self.link.write(reply)
                     self._handle(events)
+                self._check_version()
                 reply, events = self.session.tick(now)
                 self.link.write(reply)
                 self._handle(events)
@@ -131,10 +153,19 @@ class RosserialHost(object):
         for event in events:
             getattr(self, '_on_' + event.kind)(event.data)
 
+    def _check_version(self):
+        version = self.parser.last_version
+        if version is not None and version not in self._versions_logged:
+            self._versions_logged.add(version)
+            rospy.logerr('%s: %s (device sent version byte 0x%02x, this host speaks 0x%02x)',
+                         self.link.port_name, MISMATCHED_PROTOCOL, version,
+                         PROTOCOL_VERSION)
+
     def _on_link(self, state):
         rospy.loginfo('%s: link %s', self.link.port_name, state)
         if state == sessions.UP:
             self.counts['link_ups'] += 1
+            self._resend_latched(self._latched)
         else:
             # Nothing from before may reach the device: drop queued values and
             # whatever the port has not sent yet.
@@ -147,7 +178,30 @@ class RosserialHost(object):
 
     def _on_log(self, level_text):
         level, text = level_text
-        _LOG.get(level, rospy.loginfo)('device: %s', text)
+        _LOG.get(level, rospy.loginfo)(text)
+
+    def _on_param(self, name):
+        """Answer from the parameter server; nothing (and an error) if it
+        cannot be sent, as rosserial_python does."""
+        try:
+            reply = self.session.param_reply(rospy.get_param(name))
+        except KeyError:
+            rospy.logerr('Parameter %s does not exist', name)
+            return
+        except ValueError as error:
+            rospy.logerr('Cannot send parameter %s: %s', name, error)
+            return
+        self.counts['params_served'] += 1
+        self.link.write(reply)
+
+    def _on_service(self, kind_part_info):
+        self.services.announce(*kind_part_info)
+        self.parser.max_payload = self.session.max_publish_size()
+
+    def _on_service_frame(self, topic_payload):
+        topic_id, payload = topic_payload
+        kind, part, info = self.session.services[topic_id]
+        self.services.on_frame(kind, part, info, payload)
 
     def _message_class(self, info):
         cls = roslib.message.get_message_class(info.message_type)
@@ -165,19 +219,33 @@ class RosserialHost(object):
         if cls is None:
             return
         self._device_pub[info.topic_id] = info.topic_name
-        if info.topic_name not in self._publishers:
-            rospy.loginfo('%s: device publishes %s [%s]', self.link.port_name,
-                          info.topic_name, info.message_type)
-            self._publishers[info.topic_name] = (
-                cls, rospy.Publisher(info.topic_name, cls, queue_size=50))
+        self.parser.max_payload = self.session.max_publish_size()
+        old = self._publishers.get(info.topic_name)
+        if old is not None and old[0] is cls:
+            return
+        if old is not None:   # renegotiated with another type
+            old[1].unregister()
+        rospy.loginfo('%s: device publishes %s [%s]', self.link.port_name,
+                      info.topic_name, info.message_type)
+        self._publishers[info.topic_name] = (
+            cls, rospy.Publisher(info.topic_name, cls, queue_size=50))
 
     def _on_subscriber(self, info):
         cls = self._message_class(info)
-        if cls is None or info.topic_name in self._subscribers:
+        if cls is None:
             return
-        rospy.loginfo('%s: device subscribes %s [%s]', self.link.port_name,
-                      info.topic_name, info.message_type)
         name = info.topic_name
+        old = self._subscribers.get(name)
+        if old is not None and old.data_class is cls:
+            # Announced again (a reset device): give it the laptop's state.
+            if self.session.state == sessions.UP:
+                self._resend_latched({name: self._latched[name]} if name in self._latched else {})
+            return
+        if old is not None:   # renegotiated with another type
+            old.unregister()
+            self._latched.pop(name, None)
+        rospy.loginfo('%s: device subscribes %s [%s]', self.link.port_name,
+                      name, info.message_type)
         self._subscribers[name] = rospy.Subscriber(
             name, cls, lambda msg: self._forward(name, msg), queue_size=1)
 
@@ -198,10 +266,36 @@ class RosserialHost(object):
 
     # -- writer -------------------------------------------------------------
     def _forward(self, name, msg):
-        """ROS subscriber callback: keep the latest serialised value."""
+        """ROS subscriber callback: keep the latest serialised value (and, from
+        a latched publisher, remember it as state to restore)."""
         buff = io.BytesIO()
         msg.serialize(buff)
+        header = getattr(msg, '_connection_header', None) or {}
+        if header.get('latching') == '1':
+            self._latched[name] = buff.getvalue()
         self.outbox.put(name, buff.getvalue(), self._clock())
+
+    def _resend_latched(self, payloads):
+        now = self._clock()
+        for name, payload in list(payloads.items()):
+            self.outbox.put(name, payload, now)
+
+    def _send_frame(self, topic_id, payload, name=None):
+        """Write one frame to the device if the link is up and it fits the
+        buffer the device announced; True if written."""
+        with self._lock:
+            if self.session.state != sessions.UP or not self.link.is_open:
+                return False
+            size = self.session.buffer_size(topic_id)
+            if size and len(payload) > size:
+                self.counts['oversize_refused'] += 1
+                self._warn('message on %s of %d bytes is larger than the device\'s '
+                           '%d-byte buffer: dropped' % (name or topic_id, len(payload), size))
+                return False
+            if not self.link.write(encode(topic_id, payload)):
+                return False
+            self.counts['frames_out'] += 1
+            return True
 
     def _write_loop(self):
         while not self._stop.is_set():
@@ -215,11 +309,9 @@ class RosserialHost(object):
                 continue
             for name, payload in self.outbox.take(now):
                 with self._lock:
-                    topic_id = self.session.subscriber_id(name)
-                    if topic_id is None:
-                        continue
-                    if self.link.write(encode(topic_id, payload)):
-                        self.counts['frames_out'] += 1
+                    info = self.session.subscriber(name)
+                if info is not None:
+                    self._send_frame(info.topic_id, payload, name)
 
     # -- diagnostics ----------------------------------------------------------
     def diagnostic_values(self):
@@ -232,7 +324,9 @@ class RosserialHost(object):
                       length_errors=stats.length_errors, resyncs=self.parser.resyncs,
                       lost_syncs=self.session.lost_syncs,
                       stale_dropped=self.outbox.stale_dropped,
-                      replaced=self.outbox.replaced, baud=self.link.baud)
+                      replaced=self.outbox.replaced, baud=self.link.baud,
+                      version_errors=stats.version_errors,
+                      lost_after_s=round(self.session.lost_after(), 3))
         return values
 
     def publish_diagnostics(self):
@@ -243,6 +337,9 @@ class RosserialHost(object):
         status.level = {sessions.UP: DiagnosticStatus.OK,
                         sessions.NEGOTIATING: DiagnosticStatus.WARN}.get(state, DiagnosticStatus.ERROR)
         status.message = 'link %s' % state
+        if self.parser.last_version is not None:
+            status.level = DiagnosticStatus.ERROR
+            status.message = MISMATCHED_PROTOCOL
         status.values = [KeyValue(k, str(v)) for k, v in sorted(values.items())]
         array = DiagnosticArray(status=[status])
         array.header.stamp = rospy.Time.now()

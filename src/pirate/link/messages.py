@@ -116,3 +116,33 @@ def encode_param_response(ints=(), floats=(), strings=()):
     out += struct.pack('<I', len(floats)) + b''.join(struct.pack('<f', v) for v in floats)
     out += struct.pack('<I', len(strings)) + b''.join(_pack_string(s) for s in strings)
     return out
+
+
+def encode_param_value(value):
+    """RequestParam response carrying ``value``, typed as ros_lib's getParam
+    expects: ints (bools as 0/1), floats or strings, one value or a list of
+    one type. ValueError, naming the reason, for anything else (a dict, a
+    mixed or empty list, None): the host then sends no answer, as
+    rosserial_python does, and the device's getParam times out."""
+    values = list(value) if isinstance(value, (list, tuple)) else [value]
+    if not values:
+        raise ValueError('an empty list cannot be sent')
+    kinds = {_param_kind(v) for v in values}
+    if len(kinds) != 1:
+        raise ValueError('all elements must have one type (ints, floats or strings)')
+    kind = kinds.pop()
+    if kind == 'ints':
+        return encode_param_response(ints=[int(v) for v in values])
+    if kind == 'floats':
+        return encode_param_response(floats=values)
+    return encode_param_response(strings=values)
+
+
+def _param_kind(value):
+    if isinstance(value, (bool, int)):
+        return 'ints'
+    if isinstance(value, float):
+        return 'floats'
+    if isinstance(value, str):
+        return 'strings'
+    raise ValueError('a %s cannot be sent (ints, floats or strings only)' % type(value).__name__)

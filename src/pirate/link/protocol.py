@@ -33,8 +33,9 @@ ID_TIME = 10
 ID_TX_STOP = 11
 FIRST_USER_TOPIC = 100
 
-#: Largest payload the parser accepts. rosserial_arduino's default buffers
-#: are 512 bytes on a Mega; anything larger is garbage from our point of view.
+#: Largest payload the parser accepts until the device announces a larger
+#: buffer (TopicInfo.buffer_size; the host raises ``max_payload`` to it).
+#: rosserial_arduino's default buffers are 512 bytes on a Mega.
 DEFAULT_MAX_PAYLOAD = 512
 
 Frame = collections.namedtuple('Frame', 'topic payload')
@@ -88,13 +89,17 @@ class FrameParser(object):
 
     ``feed(data)`` returns the list of :class:`Frame` completed by ``data``.
     Every frame returned passed both checksums. ``resyncs`` counts the times
-    the parser had to throw bytes away to find the next frame.
+    the parser had to throw bytes away to find the next frame. A sync byte
+    followed by another version byte and a valid length checksum is a frame
+    of another rosserial release: counted in ``stats.version_errors``, its
+    version byte kept in ``last_version`` (the host reports it).
     """
 
     def __init__(self, max_payload=DEFAULT_MAX_PAYLOAD):
         self.max_payload = max_payload
         self.stats = Stats()
         self.resyncs = 0
+        self.last_version = None
         self._buf = bytearray()
         self._dropping = False
 
@@ -132,7 +137,11 @@ class FrameParser(object):
                 break
             if buf[1] != PROTOCOL_VERSION:
                 if buf[1] != SYNC:
-                    self.stats.version_errors += 1
+                    if len(buf) < 5:
+                        break   # a frame of another protocol version? wait for its length
+                    if buf[4] == length_checksum(buf[2] | (buf[3] << 8)):
+                        self.stats.version_errors += 1
+                        self.last_version = buf[1]
                 self._drop(1)
                 continue
             if len(buf) < 5:

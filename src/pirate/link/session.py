@@ -13,9 +13,19 @@ does the talking. Link states:
                    request since our last topic request: the handshake is
                    done and commands may flow.
 
-Lost sync: no valid frame from the device for ``sync_timeout`` s while up, or
-a frame on a topic id we do not know (the device was reset behind our back),
-sends the link back to ``negotiating``.
+As rosserial_python does, TopicInfo (publishers, subscribers, both halves
+of service servers and clients) is taken at any time, also while up: a
+device that was reset announces itself again and the link stays up. A
+frame on a topic id nobody announced means the device forgot its topics:
+request them again (rosserial_python: "Tried to publish before configured").
+
+Lost sync: no valid frame from the device for :meth:`HostSession.lost_after`
+seconds while up. That limit comes from what the device sent: three times
+the longest of its last :data:`GAPS_KEPT` gaps between frames, never below
+``sync_timeout`` (0.5 s: a device streaming at 90 Hz is found dead within
+0.5 s) and never above :data:`LOST_AFTER_MAX_S`; until enough gaps were
+seen it is :data:`LOST_AFTER_UNKNOWN_S`, so a ros_lib device that only
+syncs every 2.5 s is never declared lost between its syncs.
 """
 import collections
 
@@ -23,24 +33,44 @@ from pirate.link import messages, protocol
 
 DOWN, NEGOTIATING, UP = 'down', 'negotiating', 'up'
 
+GAPS_KEPT = 16
+GAPS_NEEDED = 4               # gaps seen since up before the measured limit applies
+GAP_FACTOR = 3.0
+LOST_AFTER_UNKNOWN_S = 7.5    # 3 x ros_lib's 2.5 s time sync
+LOST_AFTER_MAX_S = 15.0       # rosserial_python's 3 x 5 s
+
+#: TopicInfo topics of the two halves of a device's service server/client:
+#: frame topic id -> (service kind, the direction the device uses it in).
+SERVICE_INFO = {
+    protocol.ID_SERVICE_SERVER + protocol.ID_PUBLISHER: ('server', 'response'),
+    protocol.ID_SERVICE_SERVER + protocol.ID_SUBSCRIBER: ('server', 'request'),
+    protocol.ID_SERVICE_CLIENT + protocol.ID_PUBLISHER: ('client', 'request'),
+    protocol.ID_SERVICE_CLIENT + protocol.ID_SUBSCRIBER: ('client', 'response'),
+}
+
 #: Something the session wants its owner to do. ``kind`` is one of
-#: 'publisher', 'subscriber' (data: TopicInfo), 'message' (data: (topic id,
-#: payload)), 'log' (data: (level, text)), 'link' (data: new state),
-#: 'error' (data: text, to be logged once per distinct text).
+#: 'publisher', 'subscriber' (data: TopicInfo), 'service' (data: (kind,
+#: part, TopicInfo)), 'message' (data: (topic id, payload)), 'service_frame'
+#: (data: (topic id, payload)), 'log' (data: (level, text)), 'param' (data:
+#: name; the owner answers with :meth:`HostSession.param_reply`), 'link'
+#: (data: new state), 'error' (data: text, to be logged once per text).
 Event = collections.namedtuple('Event', 'kind data')
 
 
 class HostSession(object):
     """What to send and what happened, frame by frame; see module docstring."""
 
-    def __init__(self, sync_timeout=3.0, request_interval=1.0):
+    def __init__(self, sync_timeout=0.5, request_interval=1.0):
         self.sync_timeout = sync_timeout
         self.request_interval = request_interval
         self.state = DOWN
         self.publishers = {}      # device topic id -> TopicInfo (device publishes)
         self.subscribers = {}     # device topic id -> TopicInfo (device subscribes)
+        self.services = {}        # device topic id -> (kind, part, TopicInfo)
         self.lost_syncs = 0
         self.time_requests = 0
+        self._gaps = collections.deque(maxlen=GAPS_KEPT)
+        self._gaps_since_up = 0
         self._last_rx = None
         self._last_request = None
         self._time_answered = False
@@ -59,6 +89,7 @@ class HostSession(object):
         """Forget the device's topics and ask it to announce them again."""
         self.publishers.clear()
         self.subscribers.clear()
+        self.services.clear()
         self._time_answered = False
         self._last_request = now
         self.state = NEGOTIATING
@@ -68,6 +99,9 @@ class HostSession(object):
         if state == self.state:
             return []
         self.state = state
+        if state == UP:
+            self._gaps.clear()          # what negotiation took says nothing of the stream
+            self._gaps_since_up = 0
         return [Event('link', state)]
 
     def tx_stop(self):
@@ -75,14 +109,21 @@ class HostSession(object):
         return protocol.encode(protocol.ID_TX_STOP)
 
     # -- time ---------------------------------------------------------------
+    def lost_after(self):
+        """Seconds of device silence that count as lost sync (module docstring)."""
+        if self._gaps_since_up < GAPS_NEEDED:
+            return max(self.sync_timeout, LOST_AFTER_UNKNOWN_S)
+        return min(max(self.sync_timeout, GAP_FACTOR * max(self._gaps)), LOST_AFTER_MAX_S)
+
     def tick(self, now):
         """Periodic check; return (bytes to send, events)."""
         if self.state == DOWN:
             return b'', []
-        if self.state == UP and now - self._last_rx > self.sync_timeout:
+        limit = self.lost_after()
+        if self.state == UP and now - self._last_rx > limit:
             self.lost_syncs += 1
             events = [Event('error', 'lost sync with the device (no frame for %.1f s), '
-                                     'requesting topics again' % self.sync_timeout),
+                                     'requesting topics again' % limit),
                       Event('link', NEGOTIATING)]
             return self._request(now), events
         if self.state == NEGOTIATING and now - self._last_request >= self.request_interval:
@@ -95,9 +136,12 @@ class HostSession(object):
 
         ``host_time`` is the time (s, float) to answer a time request with.
         """
+        if self._last_rx is not None:
+            self._gaps.append(max(0.0, now - self._last_rx))
+            self._gaps_since_up += 1
         self._last_rx = now
         topic = frame.topic
-        if topic in (protocol.ID_PUBLISHER, protocol.ID_SUBSCRIBER):
+        if topic in (protocol.ID_PUBLISHER, protocol.ID_SUBSCRIBER) or topic in SERVICE_INFO:
             return self._topic_info(frame)
         if topic == protocol.ID_TIME:
             self.time_requests += 1
@@ -106,25 +150,37 @@ class HostSession(object):
                                     messages.encode_time(*messages.time_from_seconds(host_time)))
             return reply, self._maybe_up()
         if topic == protocol.ID_LOG:
-            try:
-                return b'', [Event('log', messages.decode_log(frame.payload))]
-            except messages.DecodeError as error:
-                return b'', [Event('error', 'bad Log frame from device: %s' % error)]
+            return b'', [self._decoded('log', messages.decode_log, frame.payload)]
         if topic == protocol.ID_PARAMETER_REQUEST:
-            # We serve no parameters: answer empty so the device does not wait.
-            return protocol.encode(protocol.ID_PARAMETER_REQUEST,
-                                   messages.encode_param_response()), []
+            return b'', [self._decoded('param', messages.decode_param_request, frame.payload)]
         if topic == protocol.ID_TX_STOP:
             return b'', []
         if topic in self.publishers:
             return b'', [Event('message', (topic, frame.payload))]
+        if topic in self.services:
+            return b'', [Event('service_frame', (topic, frame.payload))]
         if self.state == UP:
             self.lost_syncs += 1
             return self._request(now), [
-                Event('error', 'frame on unknown topic id %d: device was reset, '
-                               'requesting topics again' % topic),
+                Event('error', 'frame on unknown topic id %d: the device forgot its topics, '
+                               'requesting them again' % topic),
                 Event('link', NEGOTIATING)]
         return b'', []
+
+    @staticmethod
+    def _decoded(kind, decode, payload):
+        try:
+            return Event(kind, decode(payload))
+        except messages.DecodeError as error:
+            return Event('error', 'bad %s frame from device: %s' % (kind, error))
+
+    @staticmethod
+    def param_reply(value):
+        """Bytes answering a parameter request with ``value`` (ints/bools, floats
+        or strings, alone or as a list of one type), as rosserial_python does;
+        ValueError (with the reason) for what ros_lib cannot receive."""
+        return protocol.encode(protocol.ID_PARAMETER_REQUEST,
+                               messages.encode_param_value(value))
 
     def _topic_info(self, frame):
         if not frame.payload:
@@ -136,20 +192,39 @@ class HostSession(object):
         if info.topic_id < protocol.FIRST_USER_TOPIC:
             return b'', [Event('error', 'device announced reserved topic id %d for %s'
                                         % (info.topic_id, info.topic_name))]
-        table = self.publishers if frame.topic == protocol.ID_PUBLISHER else self.subscribers
-        table[info.topic_id] = info
-        kind = 'publisher' if frame.topic == protocol.ID_PUBLISHER else 'subscriber'
-        return b'', [Event(kind, info)] + self._maybe_up()
+        if frame.topic in SERVICE_INFO:
+            kind, part = SERVICE_INFO[frame.topic]
+            self.services[info.topic_id] = (kind, part, info)
+            event = Event('service', (kind, part, info))
+        else:
+            publishes = frame.topic == protocol.ID_PUBLISHER
+            (self.publishers if publishes else self.subscribers)[info.topic_id] = info
+            event = Event('publisher' if publishes else 'subscriber', info)
+        return b'', [event] + self._maybe_up()
 
     def _maybe_up(self):
         if (self.state == NEGOTIATING and self._time_answered
-                and (self.publishers or self.subscribers)):
+                and (self.publishers or self.subscribers or self.services)):
             return self._set_state(UP)
         return []
 
-    def subscriber_id(self, topic_name):
-        """Device topic id of the device's subscriber to ``topic_name``, or None."""
-        for topic_id, info in self.subscribers.items():
+    def subscriber(self, topic_name):
+        """TopicInfo of the device's subscriber to ``topic_name``, or None."""
+        for info in self.subscribers.values():
             if info.topic_name == topic_name:
-                return topic_id
+                return info
         return None
+
+    def buffer_size(self, topic_id):
+        """Bytes the device announced it can receive on ``topic_id`` (0: unknown)."""
+        if topic_id in self.subscribers:
+            return self.subscribers[topic_id].buffer_size
+        if topic_id in self.services:
+            return self.services[topic_id][2].buffer_size
+        return 0
+
+    def max_publish_size(self):
+        """Largest payload the device announced it may send (its buffer)."""
+        sizes = [i.buffer_size for i in self.publishers.values()]
+        sizes += [i.buffer_size for k, p, i in self.services.values()]
+        return max(sizes + [protocol.DEFAULT_MAX_PAYLOAD])
