@@ -18,7 +18,6 @@ import signal
 import subprocess
 import sys
 import tempfile
-import threading
 import time
 import unittest
 
@@ -26,55 +25,14 @@ import rospkg
 import rospy
 import rostest
 
-from pirate import names
-from pirate.msg import ControlArray, SetpointArray
+import fil_harness
 from pirate.link.fil import FirmwareInTheLoop, build_native_firmware
 from pirate.sim.model import PirateModel
 
-SETPOINT_PAYLOAD = 2 * 13          # serialised SetpointArray: how the relay tells it apart
 BUDGET_S = 0.3
 MAX_AGE_S = 0.2
-BOARDS = 9
-
-
-def wait_for(condition, timeout, what):
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if condition():
-            return
-        time.sleep(0.01)
-    raise AssertionError('timed out after %.1f s waiting for %s' % (timeout, what))
-
-
-class Laptop(object):
-    """Publishes a counting setpoint (camera tilt element) at 10 Hz and
-    remembers when each value was published."""
-
-    def __init__(self):
-        self.pub = rospy.Publisher(names.SETPOINT_TOPIC, SetpointArray, queue_size=1)
-        self.control = rospy.Publisher(names.CONTROL_TOPIC, ControlArray, queue_size=1, latch=True)
-        self.published = []            # (time, value)
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._run)
-        self._thread.daemon = True
-
-    def start(self):
-        codes = [0] * 12
-        codes[ControlArray.COMMAND_INDEX] = ControlArray.PLAY
-        self.control.publish(ControlArray(data=codes))
-        self._thread.start()
-
-    def _run(self):
-        value = 0
-        while not self._stop.is_set() and not rospy.is_shutdown():
-            value = value % 200 + 1
-            self.published.append((time.monotonic(), value))
-            self.pub.publish(SetpointArray(data=[value] + [0] * 12))
-            self._stop.wait(0.1)
-
-    def stop(self):
-        self._stop.set()
-        self._thread.join(1.0)
+BOARDS = fil_harness.BOARDS
+wait_for = fil_harness.wait_for
 
 
 class FilLinkTest(unittest.TestCase):
@@ -90,7 +48,8 @@ class FilLinkTest(unittest.TestCase):
         self.fil = FirmwareInTheLoop(self.firmware, PirateModel(), self.link)
         self.fil.start()
         self.host = self._spawn_host()
-        self.laptop = Laptop()
+        self.laptop = fil_harness.Laptop(fil_harness.ros_sender())
+        self.bus = fil_harness.Bus(self.fil)
 
     def tearDown(self):
         self.laptop.stop()
@@ -110,15 +69,13 @@ class FilLinkTest(unittest.TestCase):
                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
 
     def _sets(self, board, since=0.0):
-        return [(t, c) for t, b, what, c in list(self.fil.boards.log)
-                if b == board and what == 'set' and t >= since]
+        return self.bus.sets(board, since)
 
     def _setpoint_frames(self, since=0.0):
-        return [t for t, topic, payload in list(self.fil.host_frames)
-                if len(payload) == SETPOINT_PAYLOAD and t >= since]
+        return self.bus.setpoint_frames(since)
 
     def _moving(self, since=0.0):
-        return all(self._sets(20 + k, since) for k in range(BOARDS))
+        return self.bus.moving(since)
 
     def test_sigkill_host_stops_every_board_within_budget(self):
         self.laptop.start()
@@ -157,19 +114,9 @@ class FilLinkTest(unittest.TestCase):
             self.assertEqual(self._sets(20 + k, stall_start + BUDGET_S)[:1],
                              self._sets(20 + k, stall_end)[:1],
                              'board %d moved during the stall' % (20 + k))
-        published = list(self.laptop.published)
-        worst = 0.0
-        for applied_at, command in self._sets(20):
-            # the publication current when this value was last published before applied_at
-            pubs = [i for i, (t, v) in enumerate(published)
-                    if v == command.setpoint0 and t <= applied_at]
-            self.assertTrue(pubs, 'board applied %d, never published' % command.setpoint0)
-            i = pubs[-1]
-            if i + 1 < len(published) and published[i + 1][0] < applied_at:
-                age = applied_at - published[i + 1][0]
-                worst = max(worst, age)
-                self.assertLessEqual(age, MAX_AGE_S, 'value %d applied %.0f ms after the '
-                                     'laptop replaced it' % (command.setpoint0, age * 1000))
+        worst = self.bus.worst_staleness(list(self.laptop.published))
+        self.assertLessEqual(worst, MAX_AGE_S, 'a setpoint applied %.0f ms after the laptop '
+                             'replaced it' % (worst * 1000))
         print('stall: worst setpoint staleness %.0f ms' % (worst * 1000))
 
     def test_unplug_stops_and_replug_needs_a_fresh_setpoint(self):

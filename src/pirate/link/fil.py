@@ -10,7 +10,9 @@ The relay (one thread) is the cable: it paces bytes at the baud rate (10
 bits per byte on the wire, 8N1), and can be *stalled* (nothing passes for a
 while; the device's bytes are lost as a USB-serial chip would lose them)
 or *unplugged* (the pty closes; plugging back opens a new one at the same
-path and resets the firmware, as opening the Mega's port does through DTR).
+path and resets the firmware, as opening the Mega's port does through DTR);
+the firmware can also be *reset* with the cable in, and one board *muted*
+on the bus.
 It also steps the model at the PICO loop rate (50 Hz). Time is wall time:
 the firmware keeps its own millisecond clock, so FIL runs at rate 1.
 
@@ -75,6 +77,7 @@ class FirmwareInTheLoop(object):
         self.host_frames = []          # (time s, topic id, payload) reaching the firmware
         self._host_parser = FrameParser()
         self.resets = 0
+        self.muted = None              # a board that does not answer on the bus
         self._lock = threading.RLock()
         self._to_fw = _Pacer(baud)
         self._to_host = _Pacer(baud)
@@ -164,6 +167,23 @@ class FirmwareInTheLoop(object):
             self._host_parser.reset()
             self._plug()
 
+    def reset(self):
+        """The Mega resets with the cable in (watchdog, brown-out): same port,
+        the firmware starts again from power-up; bytes on their way to it
+        are lost."""
+        with self._lock:
+            self._stop_firmware()
+            self._to_fw.clear()
+            self._to_host.clear()
+            self._start_firmware()
+            self.resets += 1
+            self._host_parser.reset()
+
+    def mute(self, board=None):
+        """Board ``board`` stops answering on the bus (None: all answer again)."""
+        with self._lock:
+            self.muted = board
+
     def stall(self, seconds):
         """Nothing crosses the link for ``seconds`` (device bytes are lost)."""
         with self._lock:
@@ -204,6 +224,8 @@ class FirmwareInTheLoop(object):
             data = _read(self._bus.fileno())
             if data:
                 reply = self.boards.feed(data, now)
+                if reply and self.muted is not None and reply[1] == self.muted:
+                    reply = b''   # one STATE per request: this one is the muted board's
                 if reply:
                     self._bus.sendall(reply)
         to_fw = self._to_fw.pop_ready(now)

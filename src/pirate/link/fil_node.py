@@ -9,14 +9,17 @@ pirate_bay_native; empty: build it with firmware/Makefile).
 FIL runs in wall time (the firmware has its own clock): no /clock.
 
 Faults for tests, on ``~fault`` (std_msgs/String): ``unplug`` (the pty
-closes), ``replug`` (a new pty, the Mega resets), ``stall SECONDS``
-(nothing crosses the link). Anything else is refused with a logged reason.
+closes), ``replug`` (a new pty, the Mega resets), ``reset`` (the Mega
+resets, cable in), ``stall SECONDS`` (nothing crosses the link), ``mute
+BOARD`` / ``unmute`` (a board stops / starts answering on the bus).
+Anything else is refused with a logged reason.
 """
 import rospy
 import rospkg
 from std_msgs.msg import String
 
 from pirate.link.fil import FirmwareInTheLoop, build_native_firmware
+from pirate.robot import tables
 from pirate.sim.model import PirateModel
 
 
@@ -49,6 +52,12 @@ def inject(fil, text):
         fil.unplug()
     elif words == ['replug']:
         fil.replug()
+    elif words == ['reset']:
+        fil.reset()
+    elif words == ['unmute']:
+        fil.mute(None)
+    elif len(words) == 2 and words[0] == 'mute' and words[1] in map(str, tables.BOARDS):
+        fil.mute(int(words[1]))
     elif len(words) == 2 and words[0] == 'stall':
         try:
             seconds = float(words[1])
@@ -59,6 +68,7 @@ def inject(fil, text):
             return
         fil.stall(seconds)
     else:
-        rospy.logerr('fil_robot: unknown fault %r (unplug | replug | stall SECONDS)', text)
+        rospy.logerr('fil_robot: unknown fault %r (unplug | replug | reset | stall SECONDS '
+                     '| mute BOARD | unmute)', text)
         return
     rospy.logwarn('fil_robot: fault injected: %s', text)
