@@ -21,7 +21,8 @@ request them again (rosserial_python: "Tried to publish before configured").
 
 Lost sync: no valid frame from the device for :meth:`HostSession.lost_after`
 seconds while up. That limit comes from what the device sent: three times
-the longest of its last :data:`GAPS_KEPT` gaps between frames, never below
+the longest of its last :data:`GAPS_KEPT` gaps between frames (messages and
+time requests; not the burst of TopicInfo at setup), never below
 ``sync_timeout`` (0.5 s: a device streaming at 90 Hz is found dead within
 0.5 s) and never above :data:`LOST_AFTER_MAX_S`; until enough gaps were
 seen it is :data:`LOST_AFTER_UNKNOWN_S`, so a ros_lib device that only
@@ -34,7 +35,7 @@ from pirate.link import messages, protocol
 DOWN, NEGOTIATING, UP = 'down', 'negotiating', 'up'
 
 GAPS_KEPT = 16
-GAPS_NEEDED = 4               # gaps seen since up before the measured limit applies
+GAPS_NEEDED = 8               # gaps seen since up before the measured limit applies
 GAP_FACTOR = 3.0
 LOST_AFTER_UNKNOWN_S = 7.5    # 3 x ros_lib's 2.5 s time sync
 LOST_AFTER_MAX_S = 15.0       # rosserial_python's 3 x 5 s
@@ -72,6 +73,7 @@ class HostSession(object):
         self._gaps = collections.deque(maxlen=GAPS_KEPT)
         self._gaps_since_up = 0
         self._last_rx = None
+        self._last_data_rx = None
         self._last_request = None
         self._time_answered = False
 
@@ -136,13 +138,14 @@ class HostSession(object):
 
         ``host_time`` is the time (s, float) to answer a time request with.
         """
-        if self._last_rx is not None:
-            self._gaps.append(max(0.0, now - self._last_rx))
-            self._gaps_since_up += 1
         self._last_rx = now
         topic = frame.topic
         if topic in (protocol.ID_PUBLISHER, protocol.ID_SUBSCRIBER) or topic in SERVICE_INFO:
-            return self._topic_info(frame)
+            return self._topic_info(frame)   # a burst at setup: says nothing of the stream
+        if self._last_data_rx is not None:
+            self._gaps.append(max(0.0, now - self._last_data_rx))
+            self._gaps_since_up += 1
+        self._last_data_rx = now
         if topic == protocol.ID_TIME:
             self.time_requests += 1
             self._time_answered = True

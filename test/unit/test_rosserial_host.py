@@ -1,0 +1,116 @@
+"""The host's ROS edge without a master or a port (issue 12 points 2-3,
+issue 14.3): buffer sizes refused, renegotiated types recreated,
+parameters served, the laptop's latched state re-sent, version mismatch on
+diagnostics. The port is a fake that records what was written."""
+import struct
+
+import pytest
+from diagnostic_msgs.msg import DiagnosticStatus
+from std_msgs.msg import Int16, String
+
+from pirate.link import host as host_module
+from pirate.link import messages, protocol, session
+from pirate.link.protocol import Frame, FrameParser
+
+
+class FakeLink(object):
+    port_name = '/dev/fake'
+    baud = 57600
+    is_open = True
+    bytes_in = bytes_out = 0
+    last_error = None
+
+    def __init__(self):
+        self.written = []
+
+    def write(self, data):
+        if data:
+            self.written.extend(FrameParser().feed(data))
+        return True
+
+    def discard_output(self):
+        pass
+
+
+@pytest.fixture
+def host():
+    h = host_module.RosserialHost('/dev/fake', 57600)
+    h.link = FakeLink()
+    h.session.opened(0.0)
+    yield h
+    for sub in h._subscribers.values():
+        sub.unregister()
+    for _, pub in h._publishers.values():
+        pub.unregister()
+
+
+def announce(h, kind, topic_id, name, cls, size=64):
+    info = messages.TopicInfo(topic_id, name, cls._type, cls._md5sum, size)
+    _, events = h.session.on_frame(Frame(kind, messages.encode_topic_info(info)), 0.0, 0)
+    h._handle(events)
+
+
+def up(h):
+    reply, events = h.session.on_frame(Frame(protocol.ID_TIME, bytes(8)), 0.0, 1.0)
+    h._handle(events)
+    assert h.session.state == session.UP
+
+
+def test_message_larger_than_the_device_buffer_is_refused(host):
+    announce(host, protocol.ID_SUBSCRIBER, 101, '/text', String, size=16)
+    up(host)
+    assert not host._send_frame(101, bytes(17), '/text')
+    assert host.counts['oversize_refused'] == 1
+    assert host._send_frame(101, bytes(16), '/text')
+    assert host.link.written[-1] == Frame(101, bytes(16))
+
+
+def test_a_topic_renegotiated_with_another_type_is_recreated(host):
+    announce(host, protocol.ID_SUBSCRIBER, 101, '/cmd', Int16)
+    announce(host, protocol.ID_PUBLISHER, 100, '/out', Int16)
+    first_sub, first_pub = host._subscribers['/cmd'], host._publishers['/out'][1]
+    announce(host, protocol.ID_SUBSCRIBER, 101, '/cmd', String)
+    announce(host, protocol.ID_PUBLISHER, 100, '/out', String)
+    assert host._subscribers['/cmd'].data_class is String
+    assert host._publishers['/out'][0] is String
+    assert first_sub is not host._subscribers['/cmd'] and first_pub.impl is None
+
+
+def test_parameters_served_from_the_parameter_server(host, monkeypatch):
+    params = {'~gain': 7, '~bad': {'a': 1}}
+    monkeypatch.setattr(host_module.rospy, 'get_param', lambda name: params[name])
+    monkeypatch.setattr(host_module.rospy, 'logerr', lambda *args: None)
+    for name in ('~gain', '~missing', '~bad'):
+        request = Frame(protocol.ID_PARAMETER_REQUEST, struct.pack('<I', len(name)) + name.encode())
+        host._handle(host.session.on_frame(request, 0.0, 0)[1])
+    assert host.link.written == [Frame(protocol.ID_PARAMETER_REQUEST,
+                                       messages.encode_param_response(ints=[7]))]
+    assert host.counts['params_served'] == 1
+
+
+def test_latched_state_is_resent_on_link_up_and_on_reannouncement(host):
+    announce(host, protocol.ID_SUBSCRIBER, 102, '/control', Int16)
+    latched, streamed = Int16(data=3), Int16(data=4)
+    latched._connection_header = {'latching': '1'}
+    host._forward('/control', latched)
+    host._forward('/control', streamed)          # not latched: not state
+    host.outbox.clear()                          # the link was not up: nothing sent
+    up(host)
+    assert [p for _, p in host.outbox.take(host._clock())] == [b'\x03\x00']
+    announce(host, protocol.ID_SUBSCRIBER, 102, '/control', Int16)   # device reset
+    assert [p for _, p in host.outbox.take(host._clock())] == [b'\x03\x00']
+
+
+def test_version_mismatch_is_an_error_on_diagnostics(host, monkeypatch):
+    errors = []
+    monkeypatch.setattr(host_module.rospy, 'logerr', lambda *args: errors.append(args))
+    published = []
+    monkeypatch.setattr(host._diag_pub, 'publish', published.append)
+    host.parser.feed(bytes([0xFF, 0xFD, 0, 0, 0xFF, 0, 0, 0xFF]))
+    host._check_version()
+    host._check_version()
+    assert len(errors) == 1 and 'Mismatched protocol version' in errors[0][0] % errors[0][1:]
+    host.publish_diagnostics()
+    status = published[0].status[0]
+    assert status.level == DiagnosticStatus.ERROR
+    assert status.message.startswith('Mismatched protocol version')
