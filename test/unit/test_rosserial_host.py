@@ -104,13 +104,10 @@ def test_latched_state_is_resent_on_link_up_and_on_reannouncement(host):
 def test_version_mismatch_is_an_error_on_diagnostics(host, monkeypatch):
     errors = []
     monkeypatch.setattr(host_module.rospy, 'logerr', lambda *args: errors.append(args))
-    published = []
-    monkeypatch.setattr(host._diag_pub, 'publish', published.append)
     host.parser.feed(bytes([0xFF, 0xFD, 0, 0, 0xFF, 0, 0, 0xFF]))
     host._check_version()
     host._check_version()
     assert len(errors) == 1 and 'Mismatched protocol version' in errors[0][0] % errors[0][1:]
-    host.publish_diagnostics()
-    status = published[0].status[0]
+    status = host.diagnostic_status()
     assert status.level == DiagnosticStatus.ERROR
     assert status.message.startswith('Mismatched protocol version')

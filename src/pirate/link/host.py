@@ -329,7 +329,9 @@ class RosserialHost(object):
                       lost_after_s=round(self.session.lost_after(), 3))
         return values
 
-    def publish_diagnostics(self):
+    def diagnostic_status(self):
+        """The link's DiagnosticStatus: OK up, WARN negotiating, ERROR down or
+        when the device speaks another protocol version."""
         values = self.diagnostic_values()
         status = DiagnosticStatus(name='pirate: serial link %s' % self.link.port_name,
                                   hardware_id=self.link.port_name)
@@ -341,6 +343,9 @@ class RosserialHost(object):
             status.level = DiagnosticStatus.ERROR
             status.message = MISMATCHED_PROTOCOL
         status.values = [KeyValue(k, str(v)) for k, v in sorted(values.items())]
-        array = DiagnosticArray(status=[status])
+        return status
+
+    def publish_diagnostics(self):
+        array = DiagnosticArray(status=[self.diagnostic_status()])
         array.header.stamp = rospy.Time.now()
         self._diag_pub.publish(array)
