@@ -139,8 +139,8 @@ def test_log_forwarded_at_level_without_prefix(monkeypatch):
     assert logged == [('warn', 'device warn: hello'), ('info', 'device info: hello')]
 
 
-@pytest.mark.parametrize('name', ['ros_lib_version_fd_rosserial_python',
-                                  'ros_lib_version_fd_serial_node'])
+@pytest.mark.parametrize('name', ('ros_lib_version_fd_rosserial_python',
+                                  'ros_lib_version_fd_serial_node'))
 def test_protocol_version_mismatch_is_noticed(name):
     parser = FrameParser()
     delivered = []
