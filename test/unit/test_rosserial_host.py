@@ -65,6 +65,13 @@ def test_message_larger_than_the_device_buffer_is_refused(host):
     assert host.link.written[-1] == Frame(101, bytes(16))
 
 
+def test_frames_up_to_the_largest_announced_buffer_are_taken(host):
+    # issue 12 point 3: frames over 512 bytes were dropped whatever the device announced
+    announce(host, protocol.ID_PUBLISHER, 100, '/big', String, size=2048)
+    payload = struct.pack('<I', 1500) + b'x' * 1500
+    assert host.parser.feed(protocol.encode(100, payload)) == [Frame(100, payload)]
+
+
 def test_a_topic_renegotiated_with_another_type_is_recreated(host):
     announce(host, protocol.ID_SUBSCRIBER, 101, '/cmd', Int16)
     announce(host, protocol.ID_PUBLISHER, 100, '/out', Int16)
