@@ -5,14 +5,22 @@ The laptop is either ROS publishers (our serial_node forwards them) or a
 :class:`pirate.link.rosserial_python_rules.RosserialPythonRules` host fed
 directly (``send(name, msg)`` stands for the ROS callback).
 """
+import os
+import signal
+import subprocess
+import sys
+import tempfile
 import threading
 import time
 
+import rospkg
 import rospy
 
 from pirate import names
 from pirate.msg import ControlArray, LimitArray, SetpointArray
+from pirate.link.fil import FirmwareInTheLoop, build_native_firmware
 from pirate.link.rosserial_python_rules import serialise
+from pirate.sim.model import PirateModel
 
 SETPOINT_PAYLOAD = 2 * 13          # serialised SetpointArray: how the relay tells it apart
 BOARDS = 9
@@ -25,6 +33,43 @@ def wait_for(condition, timeout, what):
             return
         time.sleep(0.01)
     raise AssertionError('timed out after %.1f s waiting for %s' % (timeout, what))
+
+
+def build():
+    """(native firmware, serial_node) paths; builds the firmware if needed."""
+    package = rospkg.RosPack().get_path('pirate')
+    return build_native_firmware(package), os.path.join(package, 'nodes', 'serial_node')
+
+
+def start_fil(firmware):
+    """Firmware in the loop on a fresh pty path, running."""
+    fil = FirmwareInTheLoop(firmware, PirateModel(),
+                            os.path.join(tempfile.mkdtemp(prefix='pirate_fil_'), 'tty'))
+    fil.start()
+    return fil
+
+
+def stop_fil(fil):
+    fil.stop()
+    os.rmdir(os.path.dirname(fil.link_path))
+
+
+def spawn_serial_node(serial_node, link):
+    """Our host as a child process on ``link`` (so a test can SIGKILL it)."""
+    return subprocess.Popen([sys.executable, serial_node, '__name:=serial_node_%d' % os.getpid(),
+                             '_port:=' + link],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
+def stop_process(proc):
+    """SIGINT (serial_node sends TX_STOP), then SIGKILL after 5 s."""
+    if proc.poll() is None:
+        proc.send_signal(signal.SIGINT)
+        try:
+            proc.wait(5)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
 
 
 def ros_sender():

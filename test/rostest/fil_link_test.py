@@ -13,21 +13,15 @@ publishing setpoints at 10 Hz, as pirate.robot.commands.Setpoint.tick does.
 - unplug/replug: boards stop; after replug (a Mega reset) nothing moves
   until a setpoint arrives after the new handshake, then motion resumes.
 """
-import os
 import signal
-import subprocess
 import sys
-import tempfile
 import time
 import unittest
 
-import rospkg
 import rospy
 import rostest
 
 import fil_harness
-from pirate.link.fil import FirmwareInTheLoop, build_native_firmware
-from pirate.sim.model import PirateModel
 
 BUDGET_S = 0.3
 MAX_AGE_S = 0.2
@@ -39,34 +33,22 @@ class FilLinkTest(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        package = rospkg.RosPack().get_path('pirate')
-        cls.firmware = build_native_firmware(package)
-        cls.serial_node = os.path.join(package, 'nodes', 'serial_node')
+        cls.firmware, cls.serial_node = fil_harness.build()
 
     def setUp(self):
-        self.link = os.path.join(tempfile.mkdtemp(prefix='pirate_fil_'), 'tty')
-        self.fil = FirmwareInTheLoop(self.firmware, PirateModel(), self.link)
-        self.fil.start()
+        self.fil = fil_harness.start_fil(self.firmware)
+        self.link = self.fil.link_path
         self.host = self._spawn_host()
         self.laptop = fil_harness.Laptop(fil_harness.ros_sender())
         self.bus = fil_harness.Bus(self.fil)
 
     def tearDown(self):
         self.laptop.stop()
-        if self.host.poll() is None:
-            self.host.send_signal(signal.SIGINT)
-            try:
-                self.host.wait(5)
-            except subprocess.TimeoutExpired:
-                self.host.kill()
-                self.host.wait()
-        self.fil.stop()
-        os.rmdir(os.path.dirname(self.link))
+        fil_harness.stop_process(self.host)
+        fil_harness.stop_fil(self.fil)
 
     def _spawn_host(self):
-        return subprocess.Popen([sys.executable, self.serial_node,
-                                 '__name:=serial_node_%d' % os.getpid(), '_port:=' + self.link],
-                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        return fil_harness.spawn_serial_node(self.serial_node, self.link)
 
     def _sets(self, board, since=0.0):
         return self.bus.sets(board, since)

@@ -18,24 +18,17 @@ re-send of latched values): with the firmware of issue 5 it needed 15 s.
 - #14.3: control modes changed during a stall, or lost in a reset, are what
   the boards run afterwards; #14.1: a muted board is logged once, by id.
 """
-import os
-import signal
-import subprocess
 import sys
-import tempfile
 import time
 import unittest
 
-import rospkg
 import rospy
 import rostest
 from rosgraph_msgs.msg import Log
 
 import fil_harness
 from fil_harness import Bus, Laptop, control_codes, wait_for
-from pirate.link.fil import FirmwareInTheLoop, build_native_firmware
 from pirate.link.rosserial_python_rules import RosserialPythonRules
-from pirate.sim.model import PirateModel
 
 RECOVERY_S = 1.0
 MAX_AGE_S = 0.2
@@ -46,16 +39,12 @@ class FilRecoveryTest(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        package = rospkg.RosPack().get_path('pirate')
-        cls.firmware = build_native_firmware(package)
-        cls.serial_node = os.path.join(package, 'nodes', 'serial_node')
+        cls.firmware, cls.serial_node = fil_harness.build()
         cls.rosout = []
         rospy.Subscriber('/rosout', Log, cls.rosout.append, queue_size=100)
 
     def setUp(self):
-        self.link = os.path.join(tempfile.mkdtemp(prefix='pirate_fil_'), 'tty')
-        self.fil = FirmwareInTheLoop(self.firmware, PirateModel(), self.link)
-        self.fil.start()
+        self.fil = fil_harness.start_fil(self.firmware)
         self.bus = Bus(self.fil)
         self.ours = self.pyrules = None
         self.laptop = None
@@ -63,26 +52,18 @@ class FilRecoveryTest(unittest.TestCase):
     def tearDown(self):
         if self.laptop:
             self.laptop.stop()
-        if self.ours is not None and self.ours.poll() is None:
-            self.ours.send_signal(signal.SIGINT)
-            try:
-                self.ours.wait(5)
-            except subprocess.TimeoutExpired:
-                self.ours.kill()
-                self.ours.wait()
+        if self.ours is not None:
+            fil_harness.stop_process(self.ours)
         if self.pyrules is not None:
             self.pyrules.stop()
-        self.fil.stop()
-        os.rmdir(os.path.dirname(self.link))
+        fil_harness.stop_fil(self.fil)
 
     def _start(self, host, codes=None):
         if host == 'ours':
-            self.ours = subprocess.Popen(
-                [sys.executable, self.serial_node, '__name:=serial_node_%d' % os.getpid(),
-                 '_port:=' + self.link], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            self.ours = fil_harness.spawn_serial_node(self.serial_node, self.fil.link_path)
             self.laptop = Laptop(fil_harness.ros_sender())
         else:
-            self.pyrules = RosserialPythonRules(self.link)
+            self.pyrules = RosserialPythonRules(self.fil.link_path)
             self.pyrules.start()
             wait_for(lambda: len(self.pyrules.subscriber_ids) == 3, 20.0, 'device subscribers')
             self.laptop = Laptop(fil_harness.direct_sender(self.pyrules))
@@ -133,6 +114,7 @@ class FilRecoveryTest(unittest.TestCase):
         reset = time.monotonic()
         self.fil.reset()
         self.assertLessEqual(self._recovery(reset, 'ours reset'), RECOVERY_S)
+        wait_for(lambda: self.bus.sets(22, reset), 2.0, 'board 22 in its slot of the cycle')
         for t, command in self.bus.sets(22, reset):
             self.assertEqual(command.mode0, TORQUE, 'board 22 ran mode %d after the reset '
                              'while the laptop believed torque' % command.mode0)
@@ -151,6 +133,7 @@ class FilRecoveryTest(unittest.TestCase):
         self.laptop.set_control(control_codes(TORQUE))
         self.assertLessEqual(self._recovery(again, 'pyrules reset, control published'),
                              RECOVERY_S)
+        wait_for(lambda: self.bus.sets(22, again), 2.0, 'board 22 in its slot of the cycle')
         self.assertEqual(self.bus.sets(22, again)[0][1].mode0, TORQUE)
 
     # -- stale setpoints after stalls, rosserial_python's FIFO replaying all --------
@@ -177,7 +160,7 @@ class FilRecoveryTest(unittest.TestCase):
         ended = time.monotonic() + 1.5
         wait_for(lambda: time.monotonic() > ended, 3.0, 'the stall')
         self._recovery(ended, 'ours stall with a control change')
-        time.sleep(0.5)
+        wait_for(lambda: self.bus.sets(22, ended), 2.0, 'board 22 in its slot of the cycle')
         modes = {command.mode0 for t, command in self.bus.sets(22, ended)}
         self.assertEqual(modes, {0}, 'board 22 ran modes %s after the stall; the laptop '
                                      'believes PWM (0)' % sorted(modes))
