@@ -118,3 +118,15 @@ def test_version_mismatch_is_an_error_on_diagnostics(host, monkeypatch):
     status = host.diagnostic_status()
     assert status.level == DiagnosticStatus.ERROR
     assert status.message.startswith('Mismatched protocol version')
+
+
+def test_a_bad_service_announcement_is_refused_and_the_reader_lives(host, monkeypatch):
+    warned = []
+    monkeypatch.setattr(host, '_warn', warned.append)
+    # a message type where a service type belongs: refused with a reason
+    announce(host, 2, 120, '/not_a_service', String)
+    assert warned and 'unknown type std_msgs/String' in warned[0]
+    # whatever a handler raises becomes a warning, never an exception in the reader
+    monkeypatch.setattr(host.services, 'announce', lambda *a: 1 / 0)
+    announce(host, 2, 121, '/boom', String)
+    assert 'ZeroDivisionError' in warned[-1]

@@ -151,7 +151,11 @@ class RosserialHost(object):
 
     def _handle(self, events):
         for event in events:
-            getattr(self, '_on_' + event.kind)(event.data)
+            try:
+                getattr(self, '_on_' + event.kind)(event.data)
+            except Exception as error:  # a device's bad input must not end the reader
+                self._warn('cannot handle %s from the device: %s: %s'
+                           % (event.kind, type(error).__name__, error))
 
     def _check_version(self):
         version = self.parser.last_version

@@ -37,7 +37,7 @@ class ServiceBridge(object):
     def announce(self, kind, part, info):
         """A device announced one half of a service (see session.SERVICE_INFO)."""
         srv = roslib.message.get_service_class(info.message_type)
-        if srv is None:
+        if srv is None or not hasattr(srv, '_request_class'):
             self._warn('device service %s has unknown type %s' % (info.topic_name,
                                                                    info.message_type))
             return
