@@ -123,6 +123,7 @@ def test_version_mismatch_is_an_error_on_diagnostics(host, monkeypatch):
 def test_a_bad_service_announcement_is_refused_and_the_reader_lives(host, monkeypatch):
     warned = []
     monkeypatch.setattr(host, '_warn', warned.append)
+    monkeypatch.setattr(host.services, '_warn', warned.append)
     # a message type where a service type belongs: refused with a reason
     announce(host, 2, 120, '/not_a_service', String)
     assert warned and 'unknown type std_msgs/String' in warned[0]
