@@ -261,12 +261,17 @@ def build_native_firmware(package_dir, build_dir=None):
     """Build (or bring up to date) the native firmware; return its path.
 
     Runs ``make -C firmware native``: a no-op when nothing changed. Raises
-    RuntimeError with the compiler's output when the build fails.
+    RuntimeError with the compiler's output when the build fails. The
+    default build folder is one per source tree: two checkouts on one
+    machine (worktrees) must never run each other's firmware, and make,
+    going by timestamps, would take a newer binary built from other sources.
     """
     import getpass
+    import hashlib
     import tempfile
-    build_dir = build_dir or os.path.join(tempfile.gettempdir(),
-                                          'pirate-firmware-%s' % getpass.getuser())
+    tree = hashlib.sha1(os.path.realpath(package_dir).encode()).hexdigest()[:12]
+    build_dir = build_dir or os.path.join(tempfile.gettempdir(), 'pirate-firmware-%s-%s'
+                                          % (getpass.getuser(), tree))
     result = subprocess.run(['make', '-s', '-C', os.path.join(package_dir, 'firmware'),
                              'native', 'BUILD=%s' % build_dir],
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
