@@ -21,6 +21,7 @@ import time
 
 import actionlib
 import rospy
+from actionlib_msgs.msg import GoalStatus
 
 from pirate import names
 from pirate.robot import commands
@@ -33,6 +34,8 @@ from pirate.sequencer.server import ABORTED, PREEMPTED, SUCCEEDED, PirateServer
 from pirate.srv import ServerStatus, ServerStatusResponse
 
 SHUTDOWN_FLUSH_S = 0.3
+TERMINAL = (GoalStatus.SUCCEEDED, GoalStatus.ABORTED, GoalStatus.PREEMPTED, GoalStatus.RECALLED,
+            GoalStatus.REJECTED)
 
 
 class PabClient(object):
@@ -122,17 +125,26 @@ class PirateManager(object):
 
     # --- action side ------------------------------------------------------
     def _on_goal(self, handle):
+        """Accept at most one goal: ``_current`` is set from acceptance until its
+        handle is terminal (issue 14.2), so no second goal is active meanwhile
+        and every cancel of this one finds it."""
         goal = handle.get_goal()
-        reason = self.server.reserve(goal)
+        with self._pending:
+            reason = self._busy() or self.server.reserve(goal)
+            if not reason:
+                handle.set_accepted('accepted')
+                self._current = handle
+                self._queue.append(handle)
+                self._pending.notify()
         if reason:
             rospy.logwarn('goal refused: %s', reason)
             handle.set_rejected(PirateResult(success=False, message=reason), reason)
-            return
-        handle.set_accepted('accepted')
-        with self._pending:
-            self._current = handle
-            self._queue.append(handle)
-            self._pending.notify()
+
+    def _busy(self):
+        """Reason while the current goal's handle is not terminal yet."""
+        if self._current is None or self._current.get_goal_status().status in TERMINAL:
+            return None
+        return 'a PAB is running (goal %s is ending): goals are not queued' % self._current.get_goal_id().id
 
     def _on_cancel(self, handle):
         with self._pending:
@@ -149,8 +161,6 @@ class PirateManager(object):
                 handle = self._queue.pop(0)
             outcome = self.server.run(handle.get_goal())
             result = PirateResult(success=outcome.status == SUCCEEDED, message=outcome.message)
-            with self._pending:
-                self._current = None
             if outcome.status == SUCCEEDED:
                 handle.set_succeeded(result, outcome.message)
             elif outcome.status == PREEMPTED:
@@ -158,6 +168,9 @@ class PirateManager(object):
             else:
                 assert outcome.status == ABORTED
                 handle.set_aborted(result, outcome.message)
+            with self._pending:
+                if self._current is handle:
+                    self._current = None     # only now: the handle is terminal
 
     def _publish_feedback(self, fb):
         handle = self._current
