@@ -25,6 +25,7 @@ from actionlib_msgs.msg import GoalStatus
 
 from pirate import names
 from pirate.robot import commands
+from pirate.state.assembler import stale_reason
 from pirate.state.feed import RobotFeed, RobotView
 from pirate.sequencer.guards import GuardBook
 from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, PirateGoal,
@@ -82,7 +83,7 @@ class PirateManager(object):
             rospy.Publisher(names.LIMITS_TOPIC, LimitArray, queue_size=1),
             lambda data: LimitArray(data=data), log=log)
         book = GuardBook(rospy.get_param('~guards'), rospy.get_param('~sequencer'))
-        self.feed = RobotFeed(book.common['feedback_timeout'])
+        self.feed = RobotFeed(book.common['feedback_timeout'], wall_factor=book.common['wall_timeout_factor'])
         self.prims = MotionPrimitives(self.setpoint, self.control, self.limit, self.feed)
         self.server = PirateServer(self.prims, self.feed, book, self._start_robot,
                                    feedback=self._publish_feedback, log=rospy.loginfo)
@@ -110,8 +111,9 @@ class PirateManager(object):
 
     # --- robot side -------------------------------------------------------
     def _on_state(self, msg):
-        if msg.stale:
-            return      # old angles are no feedback: let the watchdog see silence
+        if msg.stale:   # old angles are no feedback: the running primitive ends now
+            self.feed.lose(stale_reason(tuple(bytearray(msg.silent_boards)), float('inf')))
+            return
         self.feed.push(RobotView(dict(zip(msg.name, msg.position)), msg.orientation,
                                  msg.odometry, msg.velocity, msg.header.stamp.to_sec()))
 
