@@ -59,8 +59,9 @@ class PabClient(object):
         rospy.loginfo('PAB ended: %s', result.message if result else 'no result')
 
     def cancel(self):
-        """Cancel the running goal."""
-        self._client.cancel_all_goals()
+        """Cancel the running goal (this client's own; a cancel-all would also
+        poke actionlib's goal-less cancel records and log errors, issue 14.8)."""
+        self._client.cancel_goal()
         self._server.cancel()
 
     def is_active(self):
@@ -84,10 +85,12 @@ class PirateManager(object):
             lambda data: LimitArray(data=data), log=log)
         book = GuardBook(rospy.get_param('~guards'), rospy.get_param('~sequencer'))
         self.feed = RobotFeed(book.common['feedback_timeout'], wall_factor=book.common['wall_timeout_factor'])
+        self.setpoint.measured = self._measured_angles   # Play holds position joints where they are
         self.prims = MotionPrimitives(self.setpoint, self.control, self.limit, self.feed)
         self.server = PirateServer(self.prims, self.feed, book, self._start_robot,
                                    feedback=self._publish_feedback, log=rospy.loginfo)
         self._goal_lock = threading.Lock()
+        self._closing = threading.Event()
         self._current = None
         self._pending = threading.Condition()
         self._queue = []
@@ -117,7 +120,14 @@ class PirateManager(object):
         self.feed.push(RobotView(dict(zip(msg.name, msg.position)), msg.orientation,
                                  msg.odometry, msg.velocity, msg.header.stamp.to_sec()))
 
+    def _measured_angles(self):
+        """Joint angles (rad) of a fresh robot state, or None."""
+        view = self.feed.latest()
+        return view.angles if view is not None and self.feed.fresh() else None
+
     def _tick(self, _event):
+        if self._closing.is_set():
+            return      # shutting down: the safe hold is the last array sent
         self.setpoint.tick()
         self.limit.tick()
 
@@ -176,7 +186,7 @@ class PirateManager(object):
 
     def _publish_feedback(self, fb):
         handle = self._current
-        if handle is not None:
+        if handle is not None and not rospy.is_shutdown():
             handle.publish_feedback(PirateFeedback(server_state=fb.server_state, pab_state=fb.pab_state,
                                                    primitive=fb.primitive, guard=fb.guard))
 
@@ -188,6 +198,7 @@ class PirateManager(object):
     # --- shutdown ---------------------------------------------------------
     def shutdown(self, *_signal):
         """SIGINT/SIGTERM: cancel, publish the safe hold, let it reach the wire."""
+        self._closing.set()
         self.server.cancel()
         self.prims.safe_hold()
         time.sleep(SHUTDOWN_FLUSH_S)   # give the publisher thread time to send it

@@ -16,7 +16,7 @@ from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.primitives import MotionPrimitives
 from pirate.sequencer.server import PirateServer
 from pirate.sim.model import PirateModel
-from pirate.state.assembler import StateAssembler, stale_reason
+from pirate.state.assembler import BadState, StateAssembler, stale_reason
 
 PICO_PERIOD_S = 0.02
 STEPS_PER_CYCLE = 5
@@ -54,6 +54,7 @@ class SimHarness(object):
         book = GuardBook(*load_files())
         self.feed = RobotFeed(feedback_timeout or book.common['feedback_timeout'],
                               wall_factor=book.common['wall_timeout_factor'])
+        self.setpoint.measured = lambda: self.feed.latest().angles if self.feed.fresh() else None
         self.prims = MotionPrimitives(self.setpoint, self.control, self.limit, self.feed)
         self.feedback = []
         self.log = []
@@ -93,10 +94,18 @@ class SimHarness(object):
             time.sleep(max(0.0, wall_next - time.monotonic()))
 
     def _report(self, states):
-        """What the state node and the manager do with one Mega cycle."""
-        now = time.monotonic()
+        """What the state node and the manager do with one Mega cycle.
+
+        The assembler's clock is robot time here, so a silent board is
+        noticed after the same robot time at any speedup (the state node
+        uses the wall clock, which is robot time on the robot).
+        """
+        now = self.robot_time
         for board, data in states:
-            self.assembler.update(board, data, now)
+            try:
+                self.assembler.update(board, data, now)
+            except BadState as bad:     # dropped whole, as the state node does
+                self.log.append(str(bad))
         snap = self.assembler.snapshot(now)
         if snap.stale:
             self.feed.lose(stale_reason(snap.silent, snap.age))

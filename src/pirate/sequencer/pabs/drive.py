@@ -13,7 +13,8 @@ Bounded independently of the odometry it waits on (issue 14.1): while the
 wheels are commanded, odometry must gain ``no_progress_mm`` every
 ``no_progress_s`` of robot time, else the drive aborts (a silent or broken
 odometry board, slipping wheels); and the whole drive never runs longer
-than |distance| / speed + ``time_margin_s``. A speed whose wheel setpoint
+than its planned profile (|distance| at speed, the last part at creep speed)
+plus ``time_margin_s``. A speed whose wheel setpoint
 rounds to 0 counts is refused: the wheels would never turn.
 """
 import math
@@ -30,6 +31,7 @@ MACHINE = StateMachine(DRIVING, (
 ))
 
 STANDSTILL_MM_S = 1.0
+MIN_WAIT_S = 0.01       # s: a wait past the deadline still checks its guard once
 
 
 class Drive(Pab):
@@ -42,6 +44,7 @@ class Drive(Pab):
 
     def __init__(self):
         self.start_mm = None
+        self.deadline = None
         self.driven = None
         self.method = 'odometry'
 
@@ -65,24 +68,28 @@ class Drive(Pab):
         speed = math.copysign(ctx.goal.speed or ctx.guards.drive['default_speed'], distance)
         view = ctx.feed.latest()
         self.start_mm = view.odometry
-        timeout = abs(distance / speed) + ctx.guards.drive['time_margin_s']
+        settings = ctx.guards.drive
+        creep = math.copysign(min(settings['creep_speed'], abs(speed)), distance)
+        fast_mm = abs(distance) - abs(speed) * settings['creep_lead']
+        planned_s = max(fast_mm, 0.0) / abs(speed) + (abs(distance) - max(fast_mm, 0.0)) / abs(creep)
+        self.deadline = view.stamp + planned_s + settings['time_margin_s']   # robot time, both phases
         ctx.prims.drive_at_velocity(speed)
         if math.isnan(view.odometry):
             self.method = 'time (eq 5.3)'
             end = view.stamp + 2.0 * abs(distance) / abs(speed)
             ctx.prims.wait_for('drive by time', lambda v: v.stamp >= end,
-                               'robot time %.1f s (eq 5.3)' % (end - view.stamp), timeout)
+                               'robot time %.1f s (eq 5.3)' % (end - view.stamp),
+                               end - view.stamp + settings['time_margin_s'])
             return
-        settings = ctx.guards.drive
-        creep = math.copysign(min(settings['creep_speed'], abs(speed)), distance)
-        fast_mm = abs(distance) - abs(speed) * settings['creep_lead']
         if fast_mm > 0:
-            self._drive_until(ctx, 'drive', fast_mm, timeout)
+            self._drive_until(ctx, 'drive', fast_mm)
         ctx.prims.drive_at_velocity(creep)
-        self._drive_until(ctx, 'drive creep', abs(distance) - abs(creep) * settings['stop_lead'], timeout)
+        self._drive_until(ctx, 'drive creep', abs(distance) - abs(creep) * settings['stop_lead'])
 
-    def _drive_until(self, ctx, name, covered_mm, timeout):
-        """Wait until the odometry has covered ``covered_mm`` from the start."""
+    def _drive_until(self, ctx, name, covered_mm):
+        """Wait until the odometry has covered ``covered_mm`` from the start,
+        within what is left of the drive's time bound."""
+        timeout = max(self.deadline - ctx.feed.latest().stamp, MIN_WAIT_S)
         progress = Progress(ctx.guards.drive, ctx.feed.latest())
         ctx.prims.wait_for(name, lambda v: progress.check(v) and abs(v.odometry - self.start_mm) >= covered_mm,
                            '|odometry - start| >= %.1f mm' % covered_mm, timeout)
