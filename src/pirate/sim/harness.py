@@ -16,6 +16,7 @@ from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.primitives import MotionPrimitives
 from pirate.sequencer.server import PirateServer
 from pirate.sim.model import PirateModel
+from pirate.sim.watchdog import MegaWatchdog
 from pirate.state.assembler import BadState, StateAssembler, stale_reason
 
 PICO_PERIOD_S = 0.02
@@ -47,7 +48,9 @@ class SimHarness(object):
         self.model = PirateModel(**model_args)
         self.speedup = speedup
         self._lock = threading.RLock()
-        self.wires = {name: _Wire(self._apply) for name in ('setpoint', 'control', 'limit')}
+        self.watchdog = MegaWatchdog()
+        self.wires = {name: _Wire(lambda name=name: self._apply(name))
+                      for name in ('setpoint', 'control', 'limit')}
         self.control = commands.Control(self.wires['control'], list)
         self.setpoint = commands.Setpoint(self.wires['setpoint'], list, self.control)
         self.limit = commands.Limit(self.wires['limit'], list)
@@ -72,14 +75,20 @@ class SimHarness(object):
         commands.play(self.control, self.setpoint, self.limit)
         self.setpoint.tick()
 
-    def _apply(self):
+    def _apply(self, which=None):
+        """The Mega: take the arrays (STOP to every board while its watchdog is tripped)."""
         with self._lock:
-            self.model.command(self.setpoint.get_all(), self.control.get_all(), self.limit.get_all())
+            if which == 'setpoint':
+                self.watchdog.setpoint_arrived(time.monotonic())
+            self.model.command(self.setpoint.get_all(), self.watchdog.boards_see(self.control.get_all()),
+                               self.limit.get_all())
 
     def _robot_loop(self):
         wall_next = time.monotonic()
         cycle = 0
         while not self._stop.is_set():
+            if self.watchdog.poll(time.monotonic()):
+                self._apply()
             with self._lock:
                 for _ in range(STEPS_PER_CYCLE):
                     self.model.step(PICO_PERIOD_S)
