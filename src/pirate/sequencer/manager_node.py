@@ -22,9 +22,12 @@ import time
 import actionlib
 import rospy
 from actionlib_msgs.msg import GoalStatus
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
+from std_msgs.msg import Header
 
 from pirate import names
 from pirate.robot import commands
+from pirate.robot.writers import OneWriter
 from pirate.state.assembler import stale_reason
 from pirate.state.feed import RobotFeed, RobotView
 from pirate.sequencer.guards import GuardBook
@@ -98,6 +101,11 @@ class PirateManager(object):
                                               self._on_cancel, auto_start=False)
         rospy.Service(names.SERVER_STATUS_SERVICE, ServerStatus, self._status)
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state, queue_size=5)
+        self._writers = OneWriter(rospy.get_name())
+        self._diagnostics = rospy.Publisher('/diagnostics', DiagnosticArray, queue_size=10)
+        for topic, kind in ((names.SETPOINT_TOPIC, SetpointArray), (names.CONTROL_TOPIC, ControlArray),
+                            (names.LIMITS_TOPIC, LimitArray)):
+            rospy.Subscriber(topic, kind, self._on_command, topic, queue_size=10)
         rospy.Timer(rospy.Duration(0.1), self._tick)
         self.panel = self._compose_panel()
         threading.Thread(target=self._worker, name='pab_worker', daemon=True).start()
@@ -125,6 +133,20 @@ class PirateManager(object):
         view = self.feed.latest()
         return view.angles if view is not None and self.feed.fresh() else None
 
+    def _on_command(self, msg, topic):
+        """Every array on the command topics: anyone but this node is a rogue (issue 14.7)."""
+        sender = msg._connection_header.get('callerid', '?')   # pylint: disable=protected-access
+        report = self._writers.heard(topic, sender, time.monotonic())
+        if report:
+            rospy.logerr('pirate_manager: %s', report)
+            self.server.cancel()
+            self.prims.safe_hold()
+            self.control.command('stop')
+            status = DiagnosticStatus(level=DiagnosticStatus.ERROR, name='pirate_manager: command writers',
+                                      message=report, hardware_id='pirate',
+                                      values=[KeyValue(key=topic, value=sender)])
+            self._diagnostics.publish(DiagnosticArray(header=Header(stamp=rospy.Time.now()), status=[status]))
+
     def _tick(self, _event):
         if self._closing.is_set():
             return      # shutting down: the safe hold is the last array sent
@@ -142,7 +164,7 @@ class PirateManager(object):
         and every cancel of this one finds it."""
         goal = handle.get_goal()
         with self._pending:
-            reason = self._busy() or self.server.reserve(goal)
+            reason = self._busy() or self._writers.refusal(time.monotonic()) or self.server.reserve(goal)
             if not reason:
                 handle.set_accepted('accepted')
                 self._current = handle
