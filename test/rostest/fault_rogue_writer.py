@@ -6,7 +6,6 @@ The test node itself is the rogue: it publishes setpoint arrays at 50 Hz
 with a wall-clock deadline.
 """
 import threading
-import time
 import unittest
 
 import actionlib
@@ -18,18 +17,10 @@ from pirate import names
 from pirate.msg import ControlArray, PirateAction, PirateGoal, SetpointArray
 from pirate.robot import tables
 
-from ready import wait_robot_connected
+from ready import wait_robot_connected, wait_until
 
 DEADLINE_S = 30.0
 STOP = 8
-
-
-def wait_until(condition, what, deadline_s=DEADLINE_S):
-    end = time.monotonic() + deadline_s
-    while not condition():
-        if time.monotonic() > end:
-            raise AssertionError('timed out waiting for %s' % what)
-        time.sleep(0.02)
 
 
 class RogueWriterTest(unittest.TestCase):
@@ -43,7 +34,7 @@ class RogueWriterTest(unittest.TestCase):
         client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
         self.assertTrue(client.wait_for_server(rospy.Duration(DEADLINE_S)))
         rogue = rospy.Publisher(names.SETPOINT_TOPIC, SetpointArray, queue_size=1)
-        wait_until(lambda: rogue.get_num_connections() >= 2, 'the sim and the manager subscribed')
+        wait_until(lambda: rogue.get_num_connections() >= 2, 'the sim and the manager subscribed', DEADLINE_S)
         stop = threading.Event()
 
         def flood():

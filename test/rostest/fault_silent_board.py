@@ -7,7 +7,6 @@ it drops every message of the board it silences, as the Mega does with a
 board that stops answering. Every wait is on a condition with a wall-clock
 deadline.
 """
-import time
 import unittest
 
 import actionlib
@@ -19,18 +18,10 @@ from pirate import names
 from pirate.msg import ControlArray, PirateAction, PirateGoal, RobotState, SetpointArray, SmallState
 from pirate.robot import tables
 
-from ready import wait_robot_connected
+from ready import wait_robot_connected, wait_until
 
 DEADLINE_S = 60.0
 HOLD_PWM = ('front_tilt', 'bend_i', 'bend_ii', 'bend_iii', 'bend_iv')
-
-
-def wait_until(condition, what, deadline_s=DEADLINE_S):
-    end = time.monotonic() + deadline_s
-    while not condition():
-        if time.monotonic() > end:
-            raise AssertionError('timed out waiting for %s' % what)
-        time.sleep(0.02)
 
 
 class SilentBoardTest(unittest.TestCase):

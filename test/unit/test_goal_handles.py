@@ -22,6 +22,7 @@ import time
 import pytest
 from actionlib_msgs.msg import GoalStatus
 
+from pirate.robot.writers import OneWriter
 from pirate.sequencer import manager_node
 from pirate.sim.harness import SimHarness
 
@@ -129,6 +130,7 @@ def manager(monkeypatch):
         mgr = manager_node.PirateManager.__new__(manager_node.PirateManager)
         mgr.server, mgr.feed = sim.server, sim.feed
         mgr._pending, mgr._queue, mgr._current = threading.Condition(), [], None
+        mgr._writers = OneWriter('/pirate_manager')
         sim.server._feedback = mgr._publish_feedback      # wired as in PirateManager.__init__
         worker = threading.Thread(target=mgr._worker, daemon=True)
         worker.start()

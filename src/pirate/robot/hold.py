@@ -34,7 +34,8 @@ def safe_hold(setpoint, control, angles=None):
         for joint in HOLD_PWM + ('wheels',):
             setpoint.set(joint, 0)
         rotation = (angles or {}).get('rotation')
-        if rotation is not None and safety.rotation_ok(rotation) and control.mode_of('rotation') == 'position':
+        plausible = rotation is not None and safety.rotation_ok(rotation)
+        if plausible and control.mode_of('rotation') == 'position':
             setpoint.set('rotation', units.rad_to_rotation(rotation))
         sent = setpoint.publish_now()
         for joint in HOLD_PWM:

@@ -136,7 +136,8 @@ def _check(board, data):
         if abs(speed) > WHEEL_READING_MAX_MM_S:
             raise BadState('wheel speed %.0f mm/s of board %d is beyond +-%.0f mm/s; dropped'
                            % (speed, board, WHEEL_READING_MAX_MM_S))
-    duty = [data[i] for i in (tables.SS_DRIVE_LOAD,) + (() if board == tables.IMU_BOARD else (tables.SS_TORQUE,))]
+    duty_elements = (tables.SS_DRIVE_LOAD,) if board == tables.IMU_BOARD else (tables.SS_DRIVE_LOAD, tables.SS_TORQUE)
+    duty = [data[i] for i in duty_elements]
     if any(abs(d) > DUTY_READING_MAX for d in duty):
         raise BadState('drive/torque duty %s of board %d is beyond +-%d; dropped'
                        % (duty, board, DUTY_READING_MAX))

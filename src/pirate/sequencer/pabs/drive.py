@@ -91,8 +91,8 @@ class Drive(Pab):
         within what is left of the drive's time bound."""
         timeout = max(self.deadline - ctx.feed.latest().stamp, MIN_WAIT_S)
         progress = Progress(ctx.guards.drive, ctx.feed.latest())
-        ctx.prims.wait_for(name, lambda v: progress.check(v) and abs(v.odometry - self.start_mm) >= covered_mm,
-                           '|odometry - start| >= %.1f mm' % covered_mm, timeout)
+        covered = lambda v: progress.check(v) and abs(v.odometry - self.start_mm) >= covered_mm  # noqa: E731
+        ctx.prims.wait_for(name, covered, '|odometry - start| >= %.1f mm' % covered_mm, timeout)
 
     def _stop(self, ctx):
         ctx.prims.drive_at_velocity(0.0)
