@@ -16,6 +16,7 @@ Params (private): ``~guards`` ({mm: table}, config/guards_*.yaml),
 Mapper; its channel map is the rest of the private namespace).
 """
 import signal
+import sys
 import threading
 import time
 
@@ -30,7 +31,7 @@ from pirate.robot import commands
 from pirate.robot.writers import OneWriter
 from pirate.state.assembler import stale_reason
 from pirate.state.feed import RobotFeed, RobotView
-from pirate.sequencer.guards import GuardBook
+from pirate.sequencer.guards import BadConfig, GuardBook
 from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, PirateGoal,
                         PirateResult, RobotState, SetpointArray)
 from pirate.sequencer.primitives import MotionPrimitives
@@ -229,7 +230,12 @@ class PirateManager(object):
 
 def main():
     rospy.init_node('pirate_manager', disable_signals=True)
-    manager = PirateManager()
+    try:
+        manager = PirateManager()
+    except BadConfig as bad:        # a bad safety setting: refuse to start, say which (issue 14.6)
+        rospy.logfatal('pirate_manager not started: %s (config/sequencer.yaml)', bad)
+        rospy.signal_shutdown(str(bad))
+        sys.exit(2)
     signal.signal(signal.SIGINT, manager.shutdown)
     signal.signal(signal.SIGTERM, manager.shutdown)
     rospy.spin()
