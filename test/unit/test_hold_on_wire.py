@@ -8,6 +8,7 @@ on the objects.
 """
 import random
 import threading
+import time
 
 from pirate.robot import commands
 from pirate.robot.hold import safe_hold
@@ -90,10 +91,20 @@ def _stop(h, how):
         safe_hold(h.setpoint, h.control, h.feed.latest().angles)
 
 
+def _yielding(publish):
+    """rospy's publish hands the message to its thread: other threads run meanwhile."""
+    def wrapped(data):
+        time.sleep(0)
+        publish(data)
+    return wrapped
+
+
 def test_the_hold_is_last_on_the_wire_after_stops_at_random_instants():
     rng = random.Random(13)
     stopped, wrong = 0, []
     with SimHarness(speedup=50.0) as h:
+        for wire in h.wires.values():
+            wire.publish = _yielding(wire.publish)
         goal = CLAMP_STRAIGHT
         while stopped < STOPS:
             reason = h.server.reserve(h.goal(goal))
