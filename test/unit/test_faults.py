@@ -295,3 +295,13 @@ class _ActivePab(_NoPab):
 
     def is_active(self):
         return True
+
+
+def test_a_silent_camera_board_stops_no_pab():
+    """14.1: only the boards a PAB reads stop it (board 20 is the camera's)."""
+    with SimHarness(speedup=SPEEDUP) as h:
+        h.silent.add(20)
+        wait_robot(h, lambda: False, 0.6)
+        assert h.assembler.snapshot(h.robot_time).silent == (20,)
+        reason, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT))
+        assert reason is None and outcome.status == 'succeeded', (reason, outcome)

@@ -29,7 +29,7 @@ from std_msgs.msg import Header
 from pirate import names
 from pirate.robot import commands
 from pirate.robot.writers import OneWriter
-from pirate.state.assembler import stale_reason
+from pirate.state.assembler import pab_blocker
 from pirate.state.feed import RobotFeed, RobotView
 from pirate.sequencer.guards import BadConfig, GuardBook
 from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, PirateGoal,
@@ -123,8 +123,9 @@ class PirateManager(object):
 
     # --- robot side -------------------------------------------------------
     def _on_state(self, msg):
-        if msg.stale:   # old angles are no feedback: the running primitive ends now
-            self.feed.lose(stale_reason(tuple(bytearray(msg.silent_boards)), float('inf')))
+        blocker = pab_blocker(msg.stale, tuple(bytearray(msg.silent_boards)), float('inf'))
+        if blocker:     # old angles are no feedback: the running primitive ends now
+            self.feed.lose(blocker)
             return
         self.feed.push(RobotView(dict(zip(msg.name, msg.position)), msg.orientation,
                                  msg.odometry, msg.velocity, msg.header.stamp.to_sec()))

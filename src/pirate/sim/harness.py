@@ -17,7 +17,7 @@ from pirate.sequencer.primitives import MotionPrimitives
 from pirate.sequencer.server import PirateServer
 from pirate.sim.model import PirateModel
 from pirate.sim.watchdog import MegaWatchdog
-from pirate.state.assembler import BadState, StateAssembler, stale_reason
+from pirate.state.assembler import BadState, StateAssembler, pab_blocker
 
 PICO_PERIOD_S = 0.02
 STEPS_PER_CYCLE = 5
@@ -116,8 +116,9 @@ class SimHarness(object):
             except BadState as bad:     # dropped whole, as the state node does
                 self.log.append(str(bad))
         snap = self.assembler.snapshot(now)
-        if snap.stale:
-            self.feed.lose(stale_reason(snap.silent, snap.age))
+        blocker = pab_blocker(snap.stale, snap.silent, snap.age)
+        if blocker:
+            self.feed.lose(blocker)
         else:
             self.feed.push(view_of(snap, self.robot_time))
 

@@ -14,8 +14,9 @@ Freshness per board (issue 14.1): the Mega skips a board that does not
 answer, so the newest message of *any* board says nothing about board 22.
 Every board's last arrival is kept; one silent for ``stale_after`` (or never
 heard while others are) makes the whole state stale, naming it in
-``Snapshot.silent``. Every PAB needs every board (odometry comes only from
-board 22, the clamp angles from four others), so a stale state stops them.
+``Snapshot.silent``. :func:`pab_blocker` says whether that stops the PABs:
+a silent board they read does (odometry comes only from board 22, the clamp
+angles from four others); a silent camera or rear board does not.
 """
 import collections
 import math
@@ -109,6 +110,21 @@ class StateAssembler(object):
         return Snapshot(list(tables.JOINT_NAMES), positions, efforts, self._orientation,
                         units.odometry_to_mm(self._odometry_counts), velocity,
                         age > self.stale_after or bool(silent), age, silent)
+
+
+def pab_blocker(stale, silent, age):
+    """Why a state cannot steer a PAB, or None (issue 14.1).
+
+    A state is unusable when it is stale because of a board the PABs read
+    (tables.PAB_BOARDS) or because nothing arrives at all; a silent camera or
+    rear board alone stops no PAB.
+    """
+    if not stale:
+        return None
+    blocking = tuple(b for b in silent if b in tables.PAB_BOARDS)
+    if silent and not blocking:
+        return None
+    return stale_reason(blocking or silent, age)
 
 
 def stale_reason(silent, age):
