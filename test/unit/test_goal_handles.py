@@ -4,7 +4,8 @@ The manager's own ``_on_goal`` / ``_on_cancel`` / ``_worker`` run in-process
 against the real Pirate Server over the simulated robot (SimHarness), with
 goal handles that follow actionlib's rules (one lock shared by the goal and
 cancel callbacks and the status setters; a cancel reaches ``_on_cancel`` only
-for a pending or active goal). The robot stands still (its model does not
+for a pending or active goal; ``publish_feedback`` lets other threads run, as
+rospy's publish does). The robot stands still (its model does not
 step), so no goal can end on its own before the primitive timeout: a goal
 whose cancel was requested and that did not end preempted lost its cancel.
 
@@ -90,6 +91,7 @@ class Handle(object):
         self._end(GoalStatus.ABORTED, text)
 
     def publish_feedback(self, _feedback):
+        time.sleep(0)       # the feedback message is built and serialised: the GIL moves on
         with ACTIONLIB_LOCK:
             self.feedbacks = getattr(self, 'feedbacks', 0) + 1
             time.sleep(0)   # rospy's publish hands the message to its thread: the GIL moves on
