@@ -16,3 +16,12 @@ def wait_robot_connected(timeout_s=60.0):
         if time.monotonic() > deadline:
             raise AssertionError('the Pirate Server saw no robot state within %.0f s' % timeout_s)
         time.sleep(0.1)   # poll the status service
+
+
+def wait_until(condition, what, deadline_s=60.0):
+    """Poll ``condition`` (every 20 ms) until true; AssertionError naming ``what`` after the deadline."""
+    end = time.monotonic() + deadline_s
+    while not condition():
+        if time.monotonic() > end:
+            raise AssertionError('timed out waiting for %s' % what)
+        time.sleep(0.02)

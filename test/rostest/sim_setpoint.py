@@ -51,6 +51,11 @@ class SimSetpointTest(unittest.TestCase):
         cls.control = commands.Control(pubs['control'], lambda d: ControlArray(data=d))
         cls.setpoint = commands.Setpoint(pubs['setpoint'], lambda d: SetpointArray(data=d),
                                          cls.control)
+        # The robot's Mega stops every board without a setpoint array for
+        # 0.25 s (its watchdog): stream the newest array at 10 Hz, as the manager does.
+        cls.stream = [None]
+        rospy.Timer(rospy.Duration(0.1), lambda _e: cls.stream[0] and pubs['setpoint'].publish(
+            SetpointArray(data=cls.stream[0])))
         rospy.wait_for_service(names.JOINT_SENSORS_SERVICE, timeout=DEADLINE_S)
         cls.joint_sensors = rospy.ServiceProxy(names.JOINT_SENSORS_SERVICE, JointSensors)
 
@@ -66,6 +71,7 @@ class SimSetpointTest(unittest.TestCase):
         self.control.command('play')
         self.setpoint.set('front_tilt', units.rad_to_encoder(0.5))
         self.setpoint.publish_now()
+        self.stream[0] = self.setpoint.get_all()
         reached = wait_until(lambda: abs(self.angle('front_tilt') - 0.5) < 0.01,
                              'front_tilt at 0.5 rad')
         self.assertTrue(reached)
@@ -79,6 +85,7 @@ class SimSetpointTest(unittest.TestCase):
         data = self.setpoint.get_all()
         data[tables.element('rotation').index] = 32000        # ~15 rad: beyond +-0.7
         self.raw_setpoint.publish(SetpointArray(data=data))
+        self.stream[0] = data
         wait_until(lambda: self.angle('rotation') > 0.65, 'rotation towards its 0.7 rad limit')
         wait_until(lambda: abs(self.angle('rotation') - 0.7) < 0.005, 'rotation at 0.7 rad')
         self.assertLess(self.angle('rotation'), 0.7 + 0.005)

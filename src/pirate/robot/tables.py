@@ -130,3 +130,7 @@ ROTATION_BOARD = 24
 #: Odometry and wheel speed are read from this board (all six wheels share
 #: one setpoint; the Mega reports each, the state node uses this one).
 ODOMETRY_BOARD = 22
+#: Boards whose readings the PABs use: front tilt (21), Bend I-IV angles and
+#: odometry (22, 23, 26, 27), rotation (24), orientation (25). A silent camera
+#: (20) or rear (28) board makes the state stale but stops no PAB.
+PAB_BOARDS = (21, 22, 23, 24, 25, 26, 27)

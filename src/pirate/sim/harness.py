@@ -16,7 +16,8 @@ from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.primitives import MotionPrimitives
 from pirate.sequencer.server import PirateServer
 from pirate.sim.model import PirateModel
-from pirate.state.assembler import StateAssembler
+from pirate.sim.watchdog import MegaWatchdog
+from pirate.state.assembler import BadState, StateAssembler, pab_blocker
 
 PICO_PERIOD_S = 0.02
 STEPS_PER_CYCLE = 5
@@ -47,12 +48,16 @@ class SimHarness(object):
         self.model = PirateModel(**model_args)
         self.speedup = speedup
         self._lock = threading.RLock()
-        self.wires = {name: _Wire(self._apply) for name in ('setpoint', 'control', 'limit')}
+        self.watchdog = MegaWatchdog()
+        self.wires = {name: _Wire(lambda name=name: self._apply(name))
+                      for name in ('setpoint', 'control', 'limit')}
         self.control = commands.Control(self.wires['control'], list)
         self.setpoint = commands.Setpoint(self.wires['setpoint'], list, self.control)
         self.limit = commands.Limit(self.wires['limit'], list)
         book = GuardBook(*load_files())
-        self.feed = RobotFeed(feedback_timeout or book.common['feedback_timeout'])
+        self.feed = RobotFeed(feedback_timeout or book.common['feedback_timeout'],
+                              wall_factor=book.common['wall_timeout_factor'])
+        self.setpoint.measured = lambda: self.feed.latest().angles if self.feed.fresh() else None
         self.prims = MotionPrimitives(self.setpoint, self.control, self.limit, self.feed)
         self.feedback = []
         self.log = []
@@ -61,6 +66,7 @@ class SimHarness(object):
         self.assembler = StateAssembler()
         self.robot_time = 1.0
         self.frozen = False           # True: the robot stops reporting
+        self.silent = set()           # boards that stop answering (the Mega skips them)
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._robot_loop, daemon=True)
 
@@ -69,14 +75,20 @@ class SimHarness(object):
         commands.play(self.control, self.setpoint, self.limit)
         self.setpoint.tick()
 
-    def _apply(self):
+    def _apply(self, which=None):
+        """The Mega: take the arrays (STOP to every board while its watchdog is tripped)."""
         with self._lock:
-            self.model.command(self.setpoint.get_all(), self.control.get_all(), self.limit.get_all())
+            if which == 'setpoint':
+                self.watchdog.setpoint_arrived(time.monotonic())
+            self.model.command(self.setpoint.get_all(), self.watchdog.boards_see(self.control.get_all()),
+                               self.limit.get_all())
 
     def _robot_loop(self):
         wall_next = time.monotonic()
         cycle = 0
         while not self._stop.is_set():
+            if self.watchdog.poll(time.monotonic()):
+                self._apply()
             with self._lock:
                 for _ in range(STEPS_PER_CYCLE):
                     self.model.step(PICO_PERIOD_S)
@@ -84,14 +96,31 @@ class SimHarness(object):
                 states = [(b, self.model.small_state(b)) for b in tables.BOARDS]
             cycle += 1
             if not self.frozen:
-                now = time.monotonic()
-                for board, data in states:
-                    self.assembler.update(board, data, now)
-                self.feed.push(view_of(self.assembler.snapshot(now), self.robot_time))
+                self._report([(b, d) for b, d in states if b not in self.silent])
             self.setpoint.tick()       # the manager's 10 Hz timer, robot time
             self.limit.tick()
             wall_next += PICO_PERIOD_S * STEPS_PER_CYCLE / self.speedup
             time.sleep(max(0.0, wall_next - time.monotonic()))
+
+    def _report(self, states):
+        """What the state node and the manager do with one Mega cycle.
+
+        The assembler's clock is robot time here, so a silent board is
+        noticed after the same robot time at any speedup (the state node
+        uses the wall clock, which is robot time on the robot).
+        """
+        now = self.robot_time
+        for board, data in states:
+            try:
+                self.assembler.update(board, data, now)
+            except BadState as bad:     # dropped whole, as the state node does
+                self.log.append(str(bad))
+        snap = self.assembler.snapshot(now)
+        blocker = pab_blocker(snap.stale, snap.silent, snap.age)
+        if blocker:
+            self.feed.lose(blocker)
+        else:
+            self.feed.push(view_of(snap, self.robot_time))
 
     def __enter__(self):
         self._thread.start()

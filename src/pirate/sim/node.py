@@ -9,6 +9,9 @@ Time: with ``use_sim_time`` the node owns ``/clock`` and advances it by
 ``~rate`` simulated seconds per wall second (``~rate`` 1 = real time);
 without it, it runs in wall time and ``~rate`` must be 1.
 
+The Mega's watchdog (:mod:`pirate.sim.watchdog`) stops every board when no
+setpoint array arrives for 0.25 s (wall clock), as the firmware does.
+
 Private params: ``~pipe_diameter`` (mm, 90 or 110), ``~orientation`` (rad,
 start roll, Fig 4.7), ``~joints`` (dict joint -> rad, start angles),
 ``~seed`` (sensor noise seed, -1 none), ``~rate`` (real-time factor).
@@ -23,6 +26,7 @@ from pirate import names
 from pirate.robot import tables
 from pirate.msg import ControlArray, LimitArray, SetpointArray, SmallState
 from pirate.sim.model import PirateModel
+from pirate.sim.watchdog import MegaWatchdog
 
 PICO_PERIOD_S = 0.02    # PICO control loops, 50 Hz
 MEGA_PERIOD_S = 0.1     # Mega refresh of all nine boards, about 10 Hz
@@ -46,6 +50,7 @@ class SimRobotNode(object):
         self._lock = threading.Lock()
         self._arrays = [list(self.model.setpoints), list(self.model.modes), list(self.model.limits)]
         self._logged = set()
+        self.watchdog = MegaWatchdog()
         self._state_pub = rospy.Publisher(names.SMALL_STATE_TOPIC, SmallState, queue_size=len(tables.BOARDS) * 4)
         self._clock_pub = rospy.Publisher('/clock', Clock, queue_size=1) if self.sim_time else None
         rospy.Subscriber(names.SETPOINT_TOPIC, SetpointArray, self._store, 0, queue_size=10)
@@ -55,7 +60,17 @@ class SimRobotNode(object):
     def _store(self, msg, which):
         with self._lock:
             self._arrays[which] = list(msg.data)
-            reasons = self.model.command(*self._arrays)
+            if which == 0:
+                self.watchdog.setpoint_arrived(time.monotonic())
+            reasons = self._command()
+        self._log_once(reasons)
+
+    def _command(self):
+        """Hand the arrays to the boards as the Mega would (STOP while disarmed)."""
+        setpoints, modes, limits = self._arrays
+        return self.model.command(setpoints, self.watchdog.boards_see(modes), limits)
+
+    def _log_once(self, reasons):
         for reason in reasons:
             if reason not in self._logged:
                 self._logged.add(reason)
@@ -76,6 +91,10 @@ class SimRobotNode(object):
         step = 0
         while not rospy.is_shutdown():
             with self._lock:
+                if self.watchdog.poll(time.monotonic()):
+                    self._command()
+                    rospy.logwarn('sim_robot: no setpoint array for %.2f s: every board stopped '
+                                  '(Mega watchdog)', self.watchdog.timeout_s)
                 self.model.step(PICO_PERIOD_S)
             sim_t += PICO_PERIOD_S
             step += 1

@@ -1,0 +1,52 @@
+"""Issue 14.8: the simulated robot has the firmware's Mega watchdog.
+
+Before, the simulated robot kept executing after the manager died, unlike
+the firmware (firmware/PirateBay/bridge.h: no setpoint array for 250 ms ->
+every board STOP, until a new setpoint array).
+"""
+import threading
+
+from pirate.robot import tables
+from pirate.sim.harness import SimHarness
+from pirate.sim.watchdog import WATCHDOG_S, MegaWatchdog
+
+STOP, PLAY = 8, 7
+COMMAND = tables.element('rear_module').index
+
+
+def test_watchdog_arms_on_a_setpoint_and_trips_after_its_timeout():
+    dog = MegaWatchdog()
+    modes = [0] * tables.CONTROL_SIZE
+    modes[COMMAND] = PLAY
+    assert dog.boards_see(modes)[COMMAND] == STOP          # after power-up: STOP
+    dog.setpoint_arrived(10.0)
+    assert dog.boards_see(modes)[COMMAND] == PLAY
+    assert not dog.poll(10.0 + WATCHDOG_S)
+    assert dog.poll(10.0 + WATCHDOG_S + 0.01) and dog.trips == 1
+    assert dog.boards_see(modes)[COMMAND] == STOP
+    assert not dog.poll(20.0)                              # trips once
+    dog.setpoint_arrived(20.0)
+    assert dog.boards_see(modes)[COMMAND] == PLAY and modes[COMMAND] == PLAY
+
+
+def test_the_simulated_robot_stops_when_the_setpoint_stream_stops():
+    """The manager dies mid-drive: the wheels stop within the watchdog, no STOP sent."""
+    with SimHarness(speedup=1.0) as h:
+        h.start_robot()
+        h.control.set_mode('wheels', 'velocity')
+        h.setpoint.set('wheels', 20)
+        h.model.joint_angles.update(bend_i=-0.9, bend_ii=0.45, bend_iii=0.45, bend_iv=-0.9)  # clamped
+        assert _wait(lambda: abs(h.model.wheel_mm_s) > 10.0, 5.0), h.model.wheel_mm_s
+        h.setpoint.enabled = False                 # the 10 Hz stream ends: the manager is gone
+        assert _wait(lambda: not h.model.running, WATCHDOG_S + 1.0)
+        assert h.watchdog.trips == 1
+        assert _wait(lambda: abs(h.model.wheel_mm_s) < 1.0, 2.0)
+
+
+def _wait(condition, timeout_s):
+    done = threading.Event()
+    for _ in range(int(timeout_s / 0.01)):
+        if condition():
+            return True
+        done.wait(0.01)
+    return condition()
