@@ -21,6 +21,9 @@ from pirate.world import network
 
 PICO_PERIOD_S = 0.02
 SETTLE_S = 0.5            # physics before the clock starts: the robot comes to rest
+#: Bodies whose true pose the ground truth reports, front to rear.
+TRUTH_BODIES = tuple(m for m, _, _ in reversed(twin_robot.FRONT_CHAIN)) + (
+    twin_robot.ROTATIONAL_FRONT, twin_robot.ROOT) + tuple(m for m, _, _ in twin_robot.REAR_CHAIN)
 ANGLE_BOARDS = {j.board: j.name for j in tables.JOINTS if j.board is not None and j.name != 'rotation'}
 
 
@@ -173,6 +176,11 @@ class TwinRobot(CommandLatch):
         body = self.data.body(name)
         return tuple(float(v) for v in body.xpos), tuple(float(v) for v in body.xquat)
 
+    @property
+    def rear_roll(self):
+        """True roll of the rear part, rad (Fig 4.7)."""
+        return self.roll()
+
     def roll(self, body=twin_robot.ROOT):
         """True roll of a body about its own x axis (Fig 4.7)."""
         rot = self.data.body(body).xmat.reshape(3, 3)
@@ -193,10 +201,12 @@ class TwinRobot(CommandLatch):
                     forces[board] = forces.get(board, 0.0) + abs(float(wrench[0]))
         return forces
 
+    def ground_truth_poses(self):
+        """[(position, quaternion w x y z)] of TRUTH_BODIES, world frame."""
+        return [self.body_pose(name) for name in TRUTH_BODIES]
+
     def ground_truth(self):
         """True pose of every module, wheel contacts, travel along the network."""
-        names = [twin_robot.ROOT, twin_robot.ROTATIONAL_FRONT] + [m for m, _, _ in
-                                                                  twin_robot.FRONT_CHAIN + twin_robot.REAR_CHAIN]
-        return {'time': self.time, 'poses': {n: self.body_pose(n) for n in names},
+        return {'time': self.time, 'poses': dict(zip(TRUTH_BODIES, self.ground_truth_poses())),
                 'wheel_contacts': self.wheel_contacts(), 'roll': self.roll(),
                 'front_roll': self.roll(twin_robot.ROTATIONAL_FRONT)}
