@@ -19,10 +19,11 @@ def world_path(world):
     return os.path.join(WORLDS_DIR, world + '.yaml')
 
 
-def make_robot(world='', pipe_diameter=90, orientation=1.5707963, joints=None, seed=None):
-    """The robot end: the twin in ``world`` if given, else the fitted model."""
+def make_robot(world='', pipe_diameter=90, orientation=1.5707963, joints=None, seed=None, config=None):
+    """The robot end: the twin in ``world`` if given (``config``: its
+    constants, default config/twin.yaml), else the fitted model."""
     if world:
         from pirate.sim.twin import TwinRobot      # MuJoCo only when a world asks for it
-        return TwinRobot(world_path(world), orientation=orientation, joints=joints, seed=seed)
+        return TwinRobot(world_path(world), orientation=orientation, joints=joints, seed=seed, config=config)
     from pirate.sim.model import PirateModel
     return PirateModel(pipe_diameter=pipe_diameter, orientation=orientation, joints=joints, seed=seed)
