@@ -83,6 +83,23 @@ def test_every_world_generates_a_model_mujoco_loads(name):
         assert model.joint(joint) is not None
 
 
+def test_obstacles_are_in_the_model_and_debris_falls_to_the_floor():
+    straight = {'type': 'straight', 'length_mm': 1000}
+    net = network.build({'pieces': [straight], 'start': {'at_mm': 300}, 'obstacles': [
+        {'type': 'step', 'at_mm': 600, 'height_mm': 4},
+        {'type': 'reduction', 'at_mm': 800, 'diameter_mm': 80},
+        {'type': 'debris', 'at_mm': 700, 'size_mm': 6}]})
+    robot = TwinRobot(net, settle_s=1.0)
+    names = [robot.model.geom(g).name for g in range(robot.model.ngeom)]
+    assert any(n.startswith('step') for n in names)
+    debris = [robot.model.body(b).name for b in range(robot.model.nbody) if robot.model.body(b).name.startswith('debris')]
+    assert len(debris) == 1
+    robot.step(1.0)
+    assert -0.045 < robot.body_pose(debris[0])[0][2] < -0.035                   # resting on the floor
+    assert numpy.abs(robot.data.body(debris[0]).cvel).max() < 0.01
+    assert _ray(robot, (0.825, 0.0, 0.0), (0.0, 0.0, 1.0)) == pytest.approx(0.040, abs=0.001)  # narrower
+
+
 def test_robot_geometry_matches_the_module_table():
     robot = TwinRobot(world('straight_90'), settle_s=0.0)
     model, data = robot.model, robot.data
