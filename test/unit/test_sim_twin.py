@@ -244,6 +244,18 @@ def test_small_state_is_raw_and_quantised():
         robot.small_state(99)
 
 
+def test_imu_rates_are_the_rear_parts_own_in_a_world_with_debris():
+    robot = TwinRobot(world('network_90'), orientation=0.6, settle_s=0.0)   # debris' free joint comes first
+    robot.step(0.06)                                                         # falling and rolling
+    imu = robot.small_state(tables.IMU_BOARD)
+    rates = [imu[i] for i in (tables.SS_IMU_U, tables.SS_IMU_V, tables.SS_IMU_W)]
+    body = robot.data.body(twin_robot.ROOT)
+    rot = body.xmat.reshape(3, 3)
+    expected = rot.T @ body.cvel[:3]        # world -> rear-part frame; cvel is from the step's start
+    assert rates == pytest.approx([math.degrees(w) * units.IMU_COUNTS_PER_DEG_S for w in expected], rel=0.05, abs=5)
+    assert max(abs(r) for r in rates) > 10
+
+
 def test_sensor_noise_is_seeded():
     def reads(seed):
         robot = TwinRobot(world('straight_90'), seed=seed)

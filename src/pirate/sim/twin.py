@@ -142,12 +142,14 @@ class TwinRobot(CommandLatch):
         sigma = self.config['sensors']['imu_noise_counts']
         for index, g in zip((tables.SS_IMU_X, tables.SS_IMU_Y, tables.SS_IMU_Z), up):
             data[index] = int(round(g * units.IMU_COUNTS_PER_G + self._noise(sigma)))
-        omega = self.data.qvel[3:6] if self._root_free_dof() else numpy.zeros(3)
-        for index, w in zip((tables.SS_IMU_U, tables.SS_IMU_V, tables.SS_IMU_W), omega):
+        for index, w in zip((tables.SS_IMU_U, tables.SS_IMU_V, tables.SS_IMU_W), self.gyro()):
             data[index] = int(round(math.degrees(w) * units.IMU_COUNTS_PER_DEG_S))
 
-    def _root_free_dof(self):
-        return self.model.body(twin_robot.ROOT).jntnum[0] > 0
+    def gyro(self):
+        """Angular velocity of the rear part in its own frame, rad/s (the
+        free joint's rotational dofs; debris bodies have free joints too)."""
+        start = self.model.jnt_dofadr[self.model.joint(twin_robot.ROOT_JOINT).id] + 3
+        return self.data.qvel[start:start + 3]
 
     def small_state(self, board):
         """The nine raw int16 elements of ``board``'s Small State (Table B.1)."""

@@ -18,7 +18,6 @@ from pirate.robot import tables
 from pirate.sim import twin_pipes, twin_robot
 
 CONFIG_FILE = os.path.join(paths.CONFIG_DIR, 'twin.yaml')
-WORLDS_DIR = os.path.join(paths.CONFIG_DIR, 'worlds')
 GEAR_SERVO_NM_PER_RAD = 20.0     # stiff: the gear output does not give
 BEND_JOINTS = tables.BEND_JOINTS
 GEAR_JOINTS = ('front_tilt', 'camera_tilt', 'camera_pan')

@@ -41,6 +41,7 @@ REAR_CHAIN = (('bend_iii_module', 'bend_iii', 25), ('bend_iv_module', 'bend_iv',
 ROBOT_CLASS = 'robot'
 WHEEL_CLASS = 'wheel'
 ROOT = 'rotational_rear'
+ROOT_JOINT = 'root'
 ROTATIONAL_FRONT = 'rotational_front'
 CAMERA_BODIES = (('camera_tilt', (0, -1, 0)), ('camera_pan', (0, 0, 1)))
 
@@ -126,7 +127,7 @@ class RobotBuilder(object):
         """The robot with its root (rotational rear half) at ``pos``."""
         half = self.geo['module_length_m'] / 2
         root = ET.SubElement(parent, 'body', name=ROOT, pos=_fmt(pos), xyaxes=_fmt(xyaxes))
-        ET.SubElement(root, 'freejoint', name='root')
+        ET.SubElement(root, 'freejoint', name=ROOT_JOINT)
         self._module(root, ROOT, self.mass['rotational_half'], -1, half)
         ET.SubElement(root, 'site', name='imu', pos='0 0 0')
         front = ET.SubElement(root, 'body', name=ROTATIONAL_FRONT, pos='0 0 0')
