@@ -143,6 +143,18 @@ def test_pipe_is_hollow_the_mitre_corner_is_there_and_the_tee_side_open():
     assert 0 < _ray(robot, tee_centre, numpy.negative(tee.stub.axes[0])) <= wall + 1e-6
 
 
+def test_tee_entered_through_its_branch_is_open_at_the_far_run_end():
+    straight = {'type': 'straight', 'length_mm': 500}
+    net = network.build({'pieces': [straight, {'type': 'tee', 'enter': 'branch', 'side': 'left'}, straight]})
+    robot = TwinRobot(net, settle_s=0.0)
+    tee, radius = net.pieces[1], 0.045
+    centre = numpy.add(tee.entry.origin, numpy.multiply(tee.entry.axes[0], radius))
+    assert _ray(robot, centre, tee.stub.axes[0]) == -1                    # the far run end is open
+    assert _ray(robot, centre, tee.exit.axes[0]) == -1                    # on into the next straight (open end)
+    assert _ray(robot, centre, tee.entry.axes[0]) == pytest.approx(radius, abs=0.004)   # the run's wall ahead
+    assert _ray(robot, centre, numpy.negative(tee.entry.axes[0])) == -1   # back down the branch
+
+
 @pytest.mark.parametrize('diameter', [90, 110])
 def test_clamp_reaches_the_angle_the_geometry_predicts(diameter):
     apex = math.asin((diameter / 1000.0 - WHEEL_D_M) / L_M)   # eq 2.1: the V's apex wheel on the wall
