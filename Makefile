@@ -3,8 +3,11 @@
 #   make test   every test (unit, rostest, firmware); non-zero on any failure
 # Both install missing Debian packages and build the catkin workspace first.
 SHELL := /bin/bash
-# ROS lives in Debian's interpreter: /usr/bin first, always.
-export PATH := /usr/bin:/bin:/usr/sbin:/sbin:$(PATH)
+# ROS lives in Debian's interpreter: /usr/bin first, always, after the
+# project's virtual environment (.venv: Debian's python3 with its site
+# packages plus MuJoCo from PyPI, made by scripts/ensure_deps).
+VENV := $(CURDIR)/.venv
+export PATH := $(VENV)/bin:/usr/bin:/bin:/usr/sbin:/sbin:$(PATH)
 # Loopback unless the user chose otherwise (README "Running across machines").
 export ROS_IP ?= 127.0.0.1
 export ROS_HOSTNAME ?= 127.0.0.1
@@ -27,7 +30,7 @@ link-package:
 	  for l in "$$pkg"/*; do [ -e "$$l" ] || rm -f "$$l"; done
 
 build: deps link-package
-	@catkin_make -C $(WS) -DCATKIN_ENABLE_TESTING=1 -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+	@catkin_make -C $(WS) -DCATKIN_ENABLE_TESTING=1 -DPYTHON_EXECUTABLE=$(VENV)/bin/python3 \
 	  > $(WS)/build.log 2>&1 || { tail -40 $(WS)/build.log; exit 1; }
 	@echo "built workspace $(WS)"
 

@@ -17,3 +17,7 @@ JOINT_SENSORS_SERVICE = '/pirate/joint_sensors'   # pirate/JointSensors
 IMU_SENSOR_SERVICE = '/pirate/imu_sensor'         # pirate/ImuSensor
 SERVER_STATUS_SERVICE = '/pirate/server_status'   # pirate/ServerStatus
 PIRATE_ACTION = '/pirate'                     # pirate/PirateAction
+#: The physics twin's ground truth (geometry_msgs/PoseArray, one pose per
+#: module, pirate.sim.twin.TRUTH_BODIES order): tests, bench and RViz only,
+#: never a PAB (the real robot has no such topic).
+GROUND_TRUTH_TOPIC = '/pirate/sim/ground_truth'

@@ -29,6 +29,9 @@ MODULES = {
     'pygame': 'python3-pygame', 'numpy': 'python3-numpy', 'matplotlib': 'python3-matplotlib',
     'PIL': 'python3-pil', 'hypothesis': 'python3-hypothesis', 'pytest': 'python3-pytest',
 }
+#: Third-party modules from PyPI (scripts/pip-requirements.txt, installed
+#: into .venv by scripts/ensure_deps) and their rosdep keys in package.xml.
+PIP_MODULES = {'mujoco': ('mujoco', 'python3-mujoco-pip')}
 #: The commands the Python code runs as subprocesses, and their Debian packages.
 COMMANDS = {
     'rosrun': 'rosbash', 'roslaunch': 'python3-roslaunch', 'roscore': 'python3-roslaunch',
@@ -104,8 +107,20 @@ def test_every_imported_message_package_has_its_python_module_listed():
     assert not missing, 'add to scripts/debian-packages.txt: %s' % sorted(missing)
 
 
+def _pip_requirements():
+    with open(os.path.join(ROOT, 'scripts', 'pip-requirements.txt')) as listing:
+        return {re.split(r'[=<>~ ]', line.strip())[0] for line in listing if line.strip() and not line.startswith('#')}
+
+
+def test_every_pip_module_is_required_and_declared_for_rosdep():
+    used = _third_party() & set(PIP_MODULES)
+    assert 'mujoco' in used
+    assert {PIP_MODULES[m][0] for m in used} <= _pip_requirements()
+    assert {PIP_MODULES[m][1] for m in used} <= _package_xml_deps()
+
+
 def test_every_third_party_module_has_its_package_listed():
-    modules = _third_party() - _message_packages()
+    modules = _third_party() - _message_packages() - set(PIP_MODULES)
     unknown = modules - set(MODULES)
     assert not unknown, 'say which Debian package installs %s in MODULES' % sorted(unknown)
     missing = {MODULES[m] for m in modules} - _debian_packages()

@@ -15,7 +15,7 @@ from pirate.state.feed import RobotFeed, RobotView
 from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.primitives import MotionPrimitives
 from pirate.sequencer.server import PirateServer
-from pirate.sim.model import PirateModel
+from pirate.sim.robot_end import make_robot
 from pirate.sim.watchdog import MegaWatchdog
 from pirate.state.assembler import BadState, StateAssembler, pab_blocker
 
@@ -42,10 +42,12 @@ def view_of(snapshot, stamp):
 
 
 class SimHarness(object):
-    """Model + sequencer, wired directly. Use as a context manager."""
+    """Model + sequencer, wired directly. Use as a context manager.
+    ``model_args`` go to :func:`pirate.sim.robot_end.make_robot` (``world=``
+    runs the physics twin)."""
 
     def __init__(self, speedup=20.0, feedback_timeout=None, **model_args):
-        self.model = PirateModel(**model_args)
+        self.model = make_robot(**model_args)
         self.speedup = speedup
         self._lock = threading.RLock()
         self.watchdog = MegaWatchdog()
@@ -132,6 +134,12 @@ class SimHarness(object):
     def __exit__(self, *exc):
         self._stop.set()
         self._thread.join(2.0)
+
+    def ground_truth(self):
+        """The twin's ground truth (tests and benchmarks only), consistent
+        with one robot step."""
+        with self._lock:
+            return self.model.ground_truth()
 
     def goal(self, name, pipe_diameter=90, distance=0.0, speed=0.0, option=0):
         """A goal object with the fields of Pirate.action's goal."""

@@ -12,7 +12,9 @@ without it, it runs in wall time and ``~rate`` must be 1.
 The Mega's watchdog (:mod:`pirate.sim.watchdog`) stops every board when no
 setpoint array arrives for 0.25 s (wall clock), as the firmware does.
 
-Private params: ``~pipe_diameter`` (mm, 90 or 110), ``~orientation`` (rad,
+Private params: ``~world`` (a world file or a name under config/worlds/:
+the physics twin in that pipe network; empty: the fitted model),
+``~pipe_diameter`` (mm, 90 or 110, fitted model only), ``~orientation`` (rad,
 start roll, Fig 4.7), ``~joints`` (dict joint -> rad, start angles),
 ``~seed`` (sensor noise seed, -1 none), ``~rate`` (real-time factor).
 """
@@ -20,12 +22,13 @@ import threading
 import time
 
 import rospy
+from geometry_msgs.msg import Pose, PoseArray
 from rosgraph_msgs.msg import Clock
 
 from pirate import names
 from pirate.robot import tables
 from pirate.msg import ControlArray, LimitArray, SetpointArray, SmallState
-from pirate.sim.model import PirateModel
+from pirate.sim.robot_end import make_robot
 from pirate.sim.watchdog import MegaWatchdog
 
 PICO_PERIOD_S = 0.02    # PICO control loops, 50 Hz
@@ -34,10 +37,11 @@ CLOCK_START_S = 1.0     # sim time 0 means "no clock yet" to rospy
 
 
 class SimRobotNode(object):
-    """Wires a :class:`PirateModel` to the topics a real Mega uses."""
+    """Wires a simulated robot (pirate.sim.robot_end) to the topics a real Mega uses."""
 
     def __init__(self):
-        self.model = PirateModel(
+        self.model = make_robot(
+            world=rospy.get_param('~world', ''),
             pipe_diameter=rospy.get_param('~pipe_diameter', 90),
             orientation=float(rospy.get_param('~orientation', 1.5707963)),
             joints=rospy.get_param('~joints', {}),
@@ -53,6 +57,8 @@ class SimRobotNode(object):
         self.watchdog = MegaWatchdog()
         self._state_pub = rospy.Publisher(names.SMALL_STATE_TOPIC, SmallState, queue_size=len(tables.BOARDS) * 4)
         self._clock_pub = rospy.Publisher('/clock', Clock, queue_size=1) if self.sim_time else None
+        self._truth_pub = (rospy.Publisher(names.GROUND_TRUTH_TOPIC, PoseArray, queue_size=2)
+                           if hasattr(self.model, 'ground_truth_poses') else None)
         rospy.Subscriber(names.SETPOINT_TOPIC, SetpointArray, self._store, 0, queue_size=10)
         rospy.Subscriber(names.CONTROL_TOPIC, ControlArray, self._store, 1, queue_size=10)
         rospy.Subscriber(names.LIMITS_TOPIC, LimitArray, self._store, 2, queue_size=10)
@@ -79,6 +85,8 @@ class SimRobotNode(object):
     def _publish_states(self):
         for board in tables.BOARDS:
             self._state_pub.publish(SmallState(board=board, data=self.model.small_state(board)))
+        if self._truth_pub:
+            self._truth_pub.publish(_pose_array(self.model.ground_truth_poses()))
 
     def spin(self):
         """Step the model; publish states every Mega cycle and /clock."""
@@ -108,6 +116,19 @@ class SimRobotNode(object):
                 time.sleep(delay)       # this node is the clock: it paces on the wall
             elif delay < -0.5:
                 wall_next = time.monotonic()   # fell behind; do not try to catch up
+
+
+def _pose_array(poses):
+    """PoseArray in the world frame from [(xyz, wxyz)]."""
+    msg = PoseArray()
+    msg.header.stamp = rospy.Time.now()
+    msg.header.frame_id = 'world'
+    for (x, y, z), (qw, qx, qy, qz) in poses:
+        pose = Pose()
+        pose.position.x, pose.position.y, pose.position.z = x, y, z
+        pose.orientation.w, pose.orientation.x, pose.orientation.y, pose.orientation.z = qw, qx, qy, qz
+        msg.poses.append(pose)
+    return msg
 
 
 def main():

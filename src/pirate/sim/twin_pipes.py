@@ -1,0 +1,154 @@
+"""The pipe network as MuJoCo geoms: hollow walls from convex boxes.
+
+A pipe is ``wall_segments`` boxes around its circumference, their inner
+faces at the pipe radius. A mitre bend is two such legs cut on the bend's
+45 deg plane (each box as long as the cut allows at its angle), so the
+corner is really there; a T-joint's run has the branch's hole cut out and
+the open side is left open; an end cap is a plate. Obstacles: a step is a
+plate on the floor, a reduction a narrower ring, debris a loose box.
+Pure (no MuJoCo import): it writes MJCF elements.
+"""
+import math
+import xml.etree.ElementTree as ET
+
+PIPE_CLASS = 'pipe'
+PIPE_GROUP = 1          # MuJoCo geom group of walls and obstacles (rays, rendering)
+MIN_BOX_M = 0.001
+
+
+def _add(a, b, scale=1.0):
+    return tuple(x + scale * y for x, y in zip(a, b))
+
+
+def _dot(a, b):
+    return sum(x * y for x, y in zip(a, b))
+
+
+def _fmt(values):
+    return ' '.join('%.6g' % v for v in values)
+
+
+class WallBuilder(object):
+    """Adds the geoms of a :class:`pirate.world.network.Network` to ``parent``."""
+
+    def __init__(self, parent, segments=24, thickness=0.004):
+        self.parent, self.segments, self.thickness = parent, segments, thickness
+        self.count = 0
+
+    def box(self, centre, x_axis, y_axis, half, name_hint='wall', rgba=None):
+        """One static box; ``x_axis``/``y_axis`` give its orientation."""
+        attrs = dict(type='box', pos=_fmt(centre), xyaxes=_fmt(x_axis + y_axis), size=_fmt(half),
+                     name='%s%d' % (name_hint, self.count), **{'class': PIPE_CLASS})
+        if rgba:
+            attrs['rgba'] = rgba
+        ET.SubElement(self.parent, 'geom', attrs)
+        self.count += 1
+
+    def _ring(self, axes):
+        """(radial, tangential) unit vectors of each wall segment of a pipe
+        whose frame rows are ``axes`` (x along the pipe)."""
+        _, y, z = axes
+        for k in range(self.segments):
+            phi = 2 * math.pi * (k + 0.5) / self.segments
+            radial = _add(tuple(c * math.cos(phi) for c in y), z, math.sin(phi))
+            tangent = _add(tuple(-c * math.sin(phi) for c in y), z, math.cos(phi))
+            yield radial, tangent
+
+    def tube(self, origin, axes, radius, spans):
+        """Wall of a pipe along axes[0] from ``origin``; ``spans(radial)``
+        returns the (start, end) intervals (m along the axis) of the wall
+        at that radial direction."""
+        half_width = radius * math.tan(math.pi / self.segments) + self.thickness / 2
+        for radial, tangent in self._ring(axes):
+            for start, end in spans(radial):
+                if end - start < MIN_BOX_M:
+                    continue
+                centre = _add(_add(origin, axes[0], (start + end) / 2), radial, radius + self.thickness / 2)
+                self.box(centre, axes[0], radial, ((end - start) / 2, self.thickness / 2, half_width))
+
+    def plate(self, centre, axes, radius):
+        """A disc closing a pipe end (an end cap), as one square plate."""
+        self.box(_add(centre, axes[0], self.thickness / 2), axes[1], axes[2],
+                 (radius + self.thickness, radius + self.thickness, self.thickness / 2))
+
+    def network(self, world):
+        """Every piece and obstacle of ``world``."""
+        for piece in world.pieces:
+            getattr(self, '_' + piece.kind)(piece)
+        for obstacle in world.obstacles:
+            getattr(self, '_obstacle_' + obstacle['type'])(world, obstacle)
+
+    def _straight(self, piece):
+        self.tube(piece.entry.origin, piece.entry.axes, piece.diameter / 2,
+                  lambda radial: [(0.0, piece.length)])
+
+    def _cap(self, piece):
+        self.plate(piece.entry.origin, piece.entry.axes, piece.diameter / 2)
+
+    def _mitre(self, piece):
+        radius = piece.diameter / 2
+        x_in, x_out = piece.entry.axes[0], piece.exit.axes[0]
+        # Leg in: cut where (s - R) + R (radial . x_out) = 0; leg out likewise.
+        self.tube(piece.entry.origin, piece.entry.axes, radius,
+                  lambda r: [(0.0, radius - radius * _dot(r, x_out))])
+        back = tuple(tuple(-c for c in axis) for axis in piece.exit.axes[:2]) + (piece.exit.axes[2],)
+        self.tube(piece.exit.origin, back, radius,
+                  lambda r: [(0.0, radius + radius * _dot(r, x_in))])
+
+    def _tee(self, piece):
+        """Run with a hole where the branch meets it; branch cut to the run."""
+        radius = piece.diameter / 2
+        centre = _add(piece.entry.origin, piece.entry.axes[0], radius)
+        if piece.spec['enter'] == 'run':
+            run_axes, run_span = piece.entry.axes, (-radius, radius)
+            branch_axis, branch_end = piece.stub.axes[0], 2 * radius
+        else:
+            run_axes, run_span = piece.exit.axes, (-2 * radius, radius)
+            branch_axis, branch_end = tuple(-c for c in piece.entry.axes[0]), radius
+        start = _add(centre, run_axes[0], run_span[0])
+        length = run_span[1] - run_span[0]
+        hole_mid = -run_span[0]
+
+        def run_spans(radial):
+            facing = _dot(radial, branch_axis)
+            if facing <= 0:
+                return [(0.0, length)]
+            return [(0.0, hole_mid - radius * facing), (hole_mid + radius * facing, length)]
+        self.tube(start, run_axes, radius, run_spans)
+        branch_axes = _frame_along(branch_axis, run_axes[0])
+        self.tube(centre, branch_axes, radius,
+                  lambda r: [(radius * abs(_dot(r, run_axes[0])), branch_end)])
+
+    def _floor(self, world, obstacle):
+        index, frame = world.locate(obstacle['at_m'])
+        return world.pieces[index].diameter / 2, frame
+
+    def _obstacle_step(self, world, obstacle):
+        radius, frame = self._floor(world, obstacle)
+        height = obstacle['height_mm'] / 1000.0
+        depth = radius - height / 2
+        centre = _add(_add(frame.origin, frame.axes[0], 0.1), frame.axes[2], -depth)
+        self.box(centre, frame.axes[0], frame.axes[1], (0.1, radius * 0.6, height / 2), 'step')
+
+    def _obstacle_reduction(self, world, obstacle):
+        _, frame = self._floor(world, obstacle)
+        length = obstacle.get('length_mm', 50) / 1000.0
+        self.tube(frame.origin, frame.axes, obstacle['diameter_mm'] / 2000.0, lambda r: [(0.0, length)])
+
+    def _obstacle_debris(self, world, obstacle):
+        radius, frame = self._floor(world, obstacle)
+        half = obstacle['size_mm'] / 2000.0
+        body = ET.SubElement(self.parent, 'body', name='debris%d' % self.count,
+                             pos=_fmt(_add(frame.origin, frame.axes[2], -(radius - half - 0.002))))
+        ET.SubElement(body, 'freejoint')
+        ET.SubElement(body, 'geom', type='box', size=_fmt((half, half, half)), mass='0.005',
+                      name='debris_geom%d' % self.count, contype='1', conaffinity='1', **{'class': PIPE_CLASS})
+        self.count += 1
+
+
+def _frame_along(x_axis, hint):
+    """Right-handed frame rows with ``x_axis`` first and ``hint`` as y."""
+    y = hint
+    z = (x_axis[1] * y[2] - x_axis[2] * y[1], x_axis[2] * y[0] - x_axis[0] * y[2],
+         x_axis[0] * y[1] - x_axis[1] * y[0])
+    return (x_axis, y, z)

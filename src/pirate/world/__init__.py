@@ -1,0 +1,1 @@
+"""Pipe networks as data: the world format, its loader and its geometry (pure)."""

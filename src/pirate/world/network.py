@@ -1,0 +1,257 @@
+"""A pipe network read from YAML, checked, and laid out in 3-D.
+
+Pure (no ROS, no MuJoCo): the physics twin (pirate.sim.twin_model) builds
+its walls from :class:`Network`, and the supervisory layer can read the same
+file as its pipe map. The format is documented in the README ("World
+format"); in short::
+
+    name: network_90
+    diameter_mm: 90                  # default inner diameter (90 or 110)
+    pieces:                          # in travel order, from the robot's start
+      - {type: straight, length_mm: 800}
+      - {type: mitre, turn: left}    # left | right | up | down
+      - {type: straight, length_mm: 400}
+      - {type: tee, enter: run, side: right}   # run: straight on, branch open to side
+      - {type: straight, length_mm: 400}
+      - {type: cap}
+    obstacles:
+      - {type: step, at_mm: 600, height_mm: 4}     # at_mm along the travel path
+      - {type: reduction, at_mm: 900, diameter_mm: 80}
+      - {type: debris, at_mm: 300, size_mm: 6}
+    start: {at_mm: 200}              # where the robot's middle starts
+
+Each piece has an entry frame; its exit frame is where the next piece
+starts. Frames are (origin, 3x3 rotation as rows of the x/y/z axes) in
+metres: x along the travel direction, y to the left, z up.
+"""
+import collections
+import math
+
+import yaml
+
+DIAMETERS_MM = (90, 110)
+TURNS = {'left': ((0, 0, 1), 1), 'right': ((0, 0, 1), -1), 'up': ((0, 1, 0), -1), 'down': ((0, 1, 0), 1)}
+PIECE_KEYS = {
+    'straight': {'length_mm': True, 'diameter_mm': False},
+    'mitre': {'turn': True},
+    'tee': {'enter': True, 'side': True},
+    'cap': {},
+}
+OBSTACLE_KEYS = {
+    'step': {'at_mm': True, 'height_mm': True},
+    'reduction': {'at_mm': True, 'diameter_mm': True, 'length_mm': False},
+    'debris': {'at_mm': True, 'size_mm': True},
+}
+TEE_ENTRIES = ('run', 'branch')
+OVERLAP_SAMPLE_M = 0.01
+
+#: One laid-out piece: kind, its entry-data, diameter (m), entry frame,
+#: exit frame, path length along its axis (m), and the open stub's frame
+#: (tee only, None otherwise).
+Piece = collections.namedtuple('Piece', 'kind spec diameter entry exit length stub')
+Frame = collections.namedtuple('Frame', 'origin axes')
+
+
+class WorldError(ValueError):
+    """A world file that cannot be built: says the file, the entry and why."""
+
+
+def _vec_add(a, b, scale=1.0):
+    return tuple(x + scale * y for x, y in zip(a, b))
+
+
+def _rotate(axes, axis_index, sign):
+    """Turn a frame 90 deg about its own axis ``axis_index`` (1 = y, 2 = z)."""
+    x, y, z = axes
+    neg = tuple(-c for c in x)
+    if axis_index == 2:      # yaw: left (+) swaps x -> y
+        return (y, neg, z) if sign > 0 else (tuple(-c for c in y), x, z)
+    # pitch about y: down (+) turns x to -z
+    return ((tuple(-c for c in z), y, x) if sign > 0 else (z, y, neg))
+
+
+def turned(frame, turn):
+    """The frame after a 90 deg ``turn`` (left/right/up/down) at its origin."""
+    axis, sign = TURNS[turn]
+    return Frame(frame.origin, _rotate(frame.axes, axis.index(1), sign))
+
+
+class Network(object):
+    """Pieces and obstacles in travel order, laid out from the origin."""
+
+    def __init__(self, name, pieces, obstacles, start_m, source='<world>'):
+        self.name, self.pieces, self.obstacles = name, pieces, obstacles
+        self.start_m, self.source = start_m, source
+
+    @property
+    def length(self):
+        """Path length from the first piece's entry to the last exit, m."""
+        return sum(p.length for p in self.pieces)
+
+    def locate(self, along_m):
+        """(piece index, Frame at ``along_m`` on the path axis): straight
+        pieces only report their own axis; for bends the entry axes are used."""
+        travelled = 0.0
+        for index, piece in enumerate(self.pieces):
+            if along_m <= travelled + piece.length or index == len(self.pieces) - 1:
+                offset = along_m - travelled
+                axes = piece.entry.axes
+                if piece.kind == 'mitre' and offset > piece.length / 2:
+                    axes = piece.exit.axes
+                    return index, Frame(_vec_add(piece.exit.origin, axes[0], offset - piece.length), axes)
+                return index, Frame(_vec_add(piece.entry.origin, axes[0], offset), axes)
+            travelled += piece.length
+        raise WorldError('%s: empty network' % self.source)
+
+    def diameter_at(self, along_m):
+        """Inner diameter (m) of the piece at ``along_m``."""
+        return self.pieces[self.locate(along_m)[0]].diameter
+
+
+def load(path):
+    """Read and check the world file at ``path``; return a :class:`Network`."""
+    try:
+        with open(path) as stream:
+            data = yaml.safe_load(stream)
+    except (OSError, yaml.YAMLError) as error:
+        raise WorldError('%s: cannot read: %s' % (path, error))
+    return build(data, source=path)
+
+
+def build(data, source='<world>'):
+    """Check ``data`` (the parsed YAML) and lay the network out."""
+    if not isinstance(data, dict):
+        raise WorldError('%s: a world is a mapping with pieces, got %r' % (source, type(data).__name__))
+    unknown = set(data) - {'name', 'diameter_mm', 'pieces', 'obstacles', 'start'}
+    if unknown:
+        raise WorldError('%s: unknown top-level key(s) %s' % (source, sorted(unknown)))
+    default_mm = _diameter(data.get('diameter_mm', 90), source, 'diameter_mm')
+    specs = data.get('pieces') or []
+    if not isinstance(specs, list) or not specs:
+        raise WorldError('%s: pieces: a non-empty list is needed' % source)
+    pieces = _lay_out(specs, default_mm, source)
+    _check_overlap(pieces, source)
+    total = sum(p.length for p in pieces)
+    obstacles = [_obstacle(i, spec, total, source) for i, spec in enumerate(data.get('obstacles') or [])]
+    start = data.get('start') or {}
+    start_m = float(start.get('at_mm', 200)) / 1000.0
+    if not 0.0 < start_m < total or pieces[_piece_at(pieces, start_m)].kind != 'straight':
+        raise WorldError('%s: start: at_mm %.0f is not inside a straight piece' % (source, start_m * 1000))
+    return Network(data.get('name', source), pieces, obstacles, start_m, source)
+
+
+def _piece_at(pieces, along_m):
+    travelled = 0.0
+    for index, piece in enumerate(pieces):
+        travelled += piece.length
+        if along_m <= travelled:
+            return index
+    return len(pieces) - 1
+
+
+def _diameter(value, source, where):
+    if value not in DIAMETERS_MM:
+        raise WorldError('%s: %s: diameter %r mm is not supported (only %s)'
+                         % (source, where, value, ', '.join(map(str, DIAMETERS_MM))))
+    return value
+
+
+def _check_keys(spec, table, source, where):
+    if not isinstance(spec, dict) or 'type' not in spec:
+        raise WorldError('%s: %s: an entry is a mapping with a type, got %r' % (source, where, spec))
+    kind = spec['type']
+    if kind not in table:
+        raise WorldError('%s: %s: unknown element %r (known: %s)' % (source, where, kind, ', '.join(table)))
+    keys = table[kind]
+    missing = [k for k, needed in keys.items() if needed and k not in spec]
+    extra = set(spec) - set(keys) - {'type'}
+    if missing or extra:
+        raise WorldError('%s: %s (%s): missing %s, unknown %s'
+                         % (source, where, kind, missing or '-', sorted(extra) or '-'))
+    return kind
+
+
+def _lay_out(specs, default_mm, source):
+    frame = Frame((0.0, 0.0, 0.0), ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)))
+    pieces, diameter_mm = [], default_mm
+    for index, spec in enumerate(specs):
+        where = 'pieces[%d]' % index
+        kind = _check_keys(spec, PIECE_KEYS, source, where)
+        follows = specs[index + 1]['type'] if index + 1 < len(specs) and isinstance(specs[index + 1], dict) else None
+        if kind in ('mitre', 'tee') and follows != 'straight':
+            raise WorldError('%s: %s (%s): a bend or T-joint needs a straight segment after it, got %s'
+                             % (source, where, kind, follows or 'the end of the list'))
+        if kind == 'cap' and index != len(specs) - 1:
+            raise WorldError('%s: %s (cap): an end cap must be the last piece' % (source, where))
+        if kind == 'straight':
+            diameter_mm = _diameter(spec.get('diameter_mm', default_mm), source, where)
+            if not float(spec['length_mm']) > 0:
+                raise WorldError('%s: %s (straight): length_mm must be > 0' % (source, where))
+        piece = _piece(kind, spec, diameter_mm / 1000.0, frame, source, where)
+        pieces.append(piece)
+        frame = piece.exit
+    return pieces
+
+
+def _piece(kind, spec, diameter, entry, source, where):
+    if kind == 'straight':
+        length = float(spec['length_mm']) / 1000.0
+        return Piece(kind, spec, diameter, entry, Frame(_vec_add(entry.origin, entry.axes[0], length), entry.axes),
+                     length, None)
+    if kind == 'cap':
+        return Piece(kind, spec, diameter, entry, entry, 0.0, None)
+    turn = spec.get('turn') if kind == 'mitre' else spec.get('side')
+    if turn not in TURNS:
+        raise WorldError('%s: %s (%s): direction %r is not one of %s' % (source, where, kind, turn, ', '.join(TURNS)))
+    corner = Frame(_vec_add(entry.origin, entry.axes[0], diameter / 2), entry.axes)
+    side = turned(corner, turn)
+    if kind == 'mitre':
+        out = Frame(_vec_add(side.origin, side.axes[0], diameter / 2), side.axes)
+        return Piece(kind, spec, diameter, entry, out, diameter, None)
+    if spec['enter'] not in TEE_ENTRIES:
+        raise WorldError('%s: %s (tee): enter %r is not one of %s' % (source, where, spec['enter'], TEE_ENTRIES))
+    ahead = Frame(_vec_add(corner.origin, corner.axes[0], diameter / 2), corner.axes)
+    if spec['enter'] == 'run':          # go straight on; the branch opens to the side
+        return Piece(kind, spec, diameter, entry, ahead, diameter, Frame(side.origin, side.axes))
+    out = Frame(_vec_add(side.origin, side.axes[0], diameter / 2), side.axes)
+    opposite = turned(turned(side, turn), turn)
+    return Piece(kind, spec, diameter, entry, out, diameter, Frame(opposite.origin, opposite.axes))
+
+
+def _axis_samples(piece):
+    """Points on the centre line of ``piece`` (and of a tee's stub)."""
+    points = []
+    segments = [(piece.entry.origin, piece.exit.origin)]
+    if piece.kind == 'mitre' or (piece.kind == 'tee' and piece.spec['enter'] == 'branch'):
+        corner = _vec_add(piece.entry.origin, piece.entry.axes[0], piece.diameter / 2)
+        segments = [(piece.entry.origin, corner), (corner, piece.exit.origin)]
+    if piece.stub is not None:
+        segments.append((piece.stub.origin, _vec_add(piece.stub.origin, piece.stub.axes[0], piece.diameter / 2)))
+    for a, b in segments:
+        n = max(1, int(math.dist(a, b) / OVERLAP_SAMPLE_M))
+        points += [tuple(a[k] + (b[k] - a[k]) * i / n for k in range(3)) for i in range(n + 1)]
+    return points
+
+
+def _check_overlap(pieces, source):
+    """Refuse two pieces, more than two apart, whose centre lines come closer
+    than one diameter (their walls would cut into each other)."""
+    samples = [_axis_samples(p) for p in pieces]
+    for i in range(len(pieces)):
+        for j in range(i + 3, len(pieces)):     # i + 1, i + 2 share a joint or a corner
+            gap = max(pieces[i].diameter, pieces[j].diameter)
+            if any(math.dist(a, b) < gap for a in samples[i] for b in samples[j]):
+                raise WorldError('%s: pieces[%d] (%s) overlaps pieces[%d] (%s)'
+                                 % (source, j, pieces[j].kind, i, pieces[i].kind))
+
+
+def _obstacle(index, spec, total_m, source):
+    where = 'obstacles[%d]' % index
+    kind = _check_keys(spec, OBSTACLE_KEYS, source, where)
+    at_m = float(spec['at_mm']) / 1000.0
+    if not 0.0 <= at_m <= total_m:
+        raise WorldError('%s: %s (%s): at_mm %.0f is outside the network (0..%.0f mm)'
+                         % (source, where, kind, at_m * 1000, total_m * 1000))
+    if kind == 'reduction' and not 0 < spec['diameter_mm'] < 110:
+        raise WorldError('%s: %s (reduction): diameter_mm %r is not a reduction' % (source, where, spec['diameter_mm']))
+    return dict(spec, at_m=at_m)

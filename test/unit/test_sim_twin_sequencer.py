@@ -1,0 +1,79 @@
+"""The unchanged sequencer against the physics twin, in one process
+(SimHarness with a world, issue 9 point 5): the report's simple clamp
+straight (Table 6.1, 90 and 110 mm) and test mission (Table 6.4) run to
+success with the report's primitive sequences, ending with both apex
+wheels on the wall (ground truth, read by the test only); a cancel ends
+with the safe hold on the wire and the joints held by the worm gears."""
+import math
+import threading
+import time
+
+import pytest
+
+from pirate.sim.harness import SimHarness
+from pirate.sim.twin_robot import ROTATIONAL_FRONT
+from test_sequencer_sim import CLAMP_SIMPLE, EXPERIMENTS, SAFE_INDICES, STRAIGHT, run_bounded
+
+SPEEDUP = 30.0
+CLAMP_STRAIGHT = 0
+
+
+def robot_wait(h, robot_s):
+    """Let ``robot_s`` seconds of robot time pass (wall-bounded)."""
+    end, wall_end = h.robot_time + robot_s, time.monotonic() + 30.0
+    while h.robot_time < end and time.monotonic() < wall_end:
+        time.sleep(0.01)
+    assert h.robot_time >= end
+
+
+def assert_clamped_straight(h):
+    """Straight, and, once the outer bends (still pressing after their
+    guards, as on the robot) have closed, both V apexes on the wall."""
+    assert STRAIGHT[0] <= h.feed.latest().orientation <= STRAIGHT[1]
+    robot_wait(h, 2.0)
+    truth = h.ground_truth()
+    assert STRAIGHT[0] <= truth['roll'] <= STRAIGHT[1]
+    assert abs(truth['front_roll'] - truth['roll']) < 0.05
+    assert {23, 26} <= set(truth['wheel_contacts'])
+
+
+@pytest.mark.parametrize('world', ['straight_90', 'straight_110'])
+def test_simple_clamp_straight_on_the_twin(world):
+    with SimHarness(speedup=SPEEDUP, world=world, orientation=math.pi / 2) as h:
+        reason, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT, pipe_diameter=int(world.rsplit('_', 1)[1])))
+        assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+        assert h.prims.executed == CLAMP_SIMPLE
+        assert_clamped_straight(h)
+
+
+def test_report_test_mission_on_the_twin():
+    _, steps = EXPERIMENTS['mission']
+    with SimHarness(speedup=SPEEDUP, world='straight_90') as h:
+        start_x = h.model.body_pose(ROTATIONAL_FRONT)[0][0]
+        for kwargs, expected in steps:
+            reason, outcome = run_bounded(h, h.goal(**kwargs))
+            assert reason is None and outcome.status == 'succeeded', (kwargs, outcome.message)
+            assert h.prims.executed == expected, kwargs
+            if kwargs['name'] == CLAMP_STRAIGHT:
+                assert_clamped_straight(h)
+                clamped_x = h.model.body_pose(ROTATIONAL_FRONT)[0][0]
+        travel_mm = (h.model.body_pose(ROTATIONAL_FRONT)[0][0] - clamped_x) * 1000
+        assert travel_mm == pytest.approx(20.0, abs=10.0)     # +50 then -30, true travel
+        assert abs(clamped_x - start_x) < 0.02
+
+
+def test_cancel_mid_clamp_leaves_the_safe_hold_and_the_pose_held():
+    with SimHarness(speedup=SPEEDUP, world='straight_90') as h:
+        h.server.reserve(h.goal(CLAMP_STRAIGHT))
+        done = {}
+        worker = threading.Thread(target=lambda: done.update(o=h.server.run(h.goal(CLAMP_STRAIGHT))), daemon=True)
+        worker.start()
+        assert h.feed.wait_until(lambda v: v.angles['bend_iv'] < -0.4, 30.0, 'clamping rear')
+        h.server.cancel()
+        worker.join(30.0)
+        assert done['o'].status == 'preempted'
+        sent = h.wires['setpoint'].sent[-1][1]
+        assert all(sent[i] == 0 for i in SAFE_INDICES.values()), sent
+        held = h.model.angle('bend_iv')
+        robot_wait(h, 5.0)
+        assert h.model.angle('bend_iv') == pytest.approx(held, abs=0.02)

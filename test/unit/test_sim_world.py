@@ -1,0 +1,92 @@
+"""World files: the shipped worlds load and lay out as drawn; every bad
+file is refused with the file, the entry and the reason (issue 9, point 1)."""
+import math
+import os
+
+import pytest
+import yaml
+
+from pirate import paths
+from pirate.world import network
+
+WORLDS = os.path.join(paths.CONFIG_DIR, 'worlds')
+
+
+def _close(a, b):
+    return all(abs(x - y) < 1e-9 for x, y in zip(a, b))
+
+
+@pytest.mark.parametrize('name', ['straight_90', 'straight_110', 'network_90'])
+def test_shipped_worlds_load(name):
+    world = network.load(os.path.join(WORLDS, name + '.yaml'))
+    assert world.pieces and world.length > 1.0
+    assert world.pieces[world.locate(world.start_m)[0]].kind == 'straight'
+
+
+def test_network_lays_out_left_then_tee_then_down():
+    world = network.load(os.path.join(WORLDS, 'network_90.yaml'))
+    kinds = [p.kind for p in world.pieces]
+    assert kinds == ['straight', 'mitre', 'straight', 'tee', 'straight', 'mitre', 'straight', 'cap']
+    d = 0.09
+    # 900 mm along x, the mitre turns left: the next straight runs along +y.
+    assert _close(world.pieces[1].exit.origin, (0.9 + d / 2, d / 2, 0.0))
+    assert _close(world.pieces[2].entry.axes[0], (0.0, 1.0, 0.0))
+    # The tee goes straight on; its open branch points right of travel (+x here).
+    assert _close(world.pieces[3].stub.axes[0], (1.0, 0.0, 0.0))
+    # The last mitre turns down: the last straight runs along -z.
+    assert _close(world.pieces[6].entry.axes[0], (0.0, 0.0, -1.0))
+    assert math.isclose(world.length, 0.9 + d + 0.5 + d + 0.5 + d + 0.4)
+
+
+def test_tee_entered_through_its_branch_leaves_the_far_run_open():
+    world = network.build({'pieces': [{'type': 'straight', 'length_mm': 500},
+                                      {'type': 'tee', 'enter': 'branch', 'side': 'left'},
+                                      {'type': 'straight', 'length_mm': 300}]})
+    tee = world.pieces[1]
+    assert _close(tee.exit.axes[0], (0.0, 1.0, 0.0))
+    assert _close(tee.stub.axes[0], (0.0, -1.0, 0.0))
+
+
+def _refusal(data, tmp_path):
+    path = tmp_path / 'bad.yaml'
+    path.write_text(yaml.safe_dump(data))
+    with pytest.raises(network.WorldError) as refused:
+        network.load(str(path))
+    return str(refused.value)
+
+
+STRAIGHT = {'type': 'straight', 'length_mm': 500}
+
+
+@pytest.mark.parametrize('data, entry, reason', [
+    ({'pieces': [STRAIGHT, {'type': 'elbow'}]}, 'pieces[1]', 'unknown element'),
+    ({'diameter_mm': 100, 'pieces': [STRAIGHT]}, 'diameter_mm', 'not supported'),
+    ({'pieces': [dict(STRAIGHT, diameter_mm=75)]}, 'pieces[0]', 'not supported'),
+    ({'pieces': [STRAIGHT, {'type': 'mitre', 'turn': 'left'}]}, 'pieces[1]', 'straight segment after it'),
+    ({'pieces': [STRAIGHT, {'type': 'mitre', 'turn': 'left'}, {'type': 'tee', 'enter': 'run', 'side': 'up'},
+                 STRAIGHT]}, 'pieces[1]', 'straight segment after it'),
+    ({'pieces': [STRAIGHT, {'type': 'mitre', 'turn': 'sideways'}, STRAIGHT]}, 'pieces[1]', 'direction'),
+    ({'pieces': [STRAIGHT, {'type': 'cap'}, STRAIGHT]}, 'pieces[1]', 'last piece'),
+    ({'pieces': [STRAIGHT, {'type': 'straight'}]}, 'pieces[1]', 'missing'),
+    ({'pieces': [STRAIGHT, {'type': 'straight', 'length_mm': 300, 'colour': 'red'}]}, 'pieces[1]', 'unknown'),
+    ({'pieces': [{'type': 'straight', 'length_mm': 300}, {'type': 'mitre', 'turn': 'left'},
+                 {'type': 'straight', 'length_mm': 100}, {'type': 'mitre', 'turn': 'left'},
+                 {'type': 'straight', 'length_mm': 100}, {'type': 'mitre', 'turn': 'left'},
+                 {'type': 'straight', 'length_mm': 400}]}, 'pieces[6]', 'overlaps pieces[0]'),
+    ({'pieces': [STRAIGHT], 'obstacles': [{'type': 'step', 'at_mm': 900, 'height_mm': 3}]},
+     'obstacles[0]', 'outside the network'),
+    ({'pieces': [STRAIGHT], 'obstacles': [{'type': 'boulder', 'at_mm': 100}]}, 'obstacles[0]', 'unknown element'),
+    ({'pieces': [STRAIGHT], 'start': {'at_mm': 800}}, 'start', 'not inside a straight'),
+    ({'pieces': []}, 'pieces', 'non-empty'),
+    ({'pipes': [STRAIGHT]}, 'top-level', 'unknown'),
+])
+def test_bad_world_is_refused_with_file_entry_and_reason(data, entry, reason, tmp_path):
+    message = _refusal(data, tmp_path)
+    assert 'bad.yaml' in message and entry in message and reason in message, message
+
+
+def test_unreadable_file_is_refused(tmp_path):
+    path = tmp_path / 'broken.yaml'
+    path.write_text('pieces: [ {type: straight')
+    with pytest.raises(network.WorldError, match='broken.yaml: cannot read'):
+        network.load(str(path))

@@ -1,0 +1,42 @@
+"""What RViz draws of the twin's world (pirate.viz.world_markers, pure)."""
+import math
+import os
+
+import pytest
+
+from pirate import paths
+from pirate.viz import world_markers
+from pirate.world import network
+
+GEOMETRY = {'module_length_m': 0.09, 'body_half_width_m': 0.017, 'body_half_height_m': 0.015,
+            'wheel_diameter_m': 0.046, 'wheel_half_width_m': 0.006}
+
+
+def _rotate_z(quat_xyzw):
+    x, y, z, w = quat_xyzw
+    return (2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y))
+
+
+@pytest.mark.parametrize('axis', [(1, 0, 0), (0, 1, 0), (0, 0, -1), (0, 0, 1), (0.6, 0.8, 0)])
+def test_z_to_turns_z_onto_the_axis(axis):
+    assert _rotate_z(world_markers.z_to(axis)) == pytest.approx(axis, abs=1e-9)
+
+
+def test_every_piece_of_the_network_is_drawn():
+    world = network.load(os.path.join(paths.CONFIG_DIR, 'worlds', 'network_90.yaml'))
+    shapes = world_markers.pipe_shapes(world)
+    # 4 straights, 2 mitres x 2 legs, tee run x 2 + branch, 1 cap
+    assert len(shapes) == 4 + 4 + 3 + 1
+    first = shapes[0]
+    assert first[1] == pytest.approx((0.45, 0.0, 0.0)) and first[3] == pytest.approx((0.09, 0.09, 0.9))
+
+
+def test_robot_boxes_reach_from_their_joint_and_wheels_sit_on_it():
+    upright = (1.0, 0.0, 0.0, 0.0)
+    pitched = (math.cos(0.25), 0.0, math.sin(0.25), 0.0)       # 0.5 rad about y
+    shapes = world_markers.robot_shapes([((0, 0, 0), upright), ((1, 0, 0), pitched)], (1, -2), GEOMETRY)
+    kinds = [s[0] for s in shapes]
+    assert kinds == ['box', 'wheel', 'box']                     # a half module has no wheel
+    assert shapes[0][1] == pytest.approx((0.045, 0, 0)) and shapes[1][1] == (0, 0, 0)
+    centre = shapes[2][1]                                       # 22.5 mm back along the pitched x
+    assert centre == pytest.approx((1 - 0.0225 * math.cos(0.5), 0, 0.0225 * math.sin(0.5)))
