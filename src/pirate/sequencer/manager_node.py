@@ -21,6 +21,7 @@ import time
 
 import actionlib
 import rospy
+from actionlib_msgs.msg import GoalStatus
 
 from pirate import names
 from pirate.robot import commands
@@ -36,27 +37,40 @@ SHUTDOWN_FLUSH_S = 0.3
 
 
 class PabClient(object):
-    """The Mapper's handle on the Pirate Server (report 4.6: it is the client)."""
+    """The Mapper's handle on the Pirate Server (report 4.6: it is the client).
 
-    def __init__(self, server):
+    Every goal gets the launch's pipe diameter. An ``actionlib.ActionClient``
+    whose callback holds its own goal handle: a SimpleActionClient logs a
+    spurious error when the fast server's status beats ``send_goal``.
+    ``on_result(success, message, refused)`` hears how each goal ended.
+    """
+
+    def __init__(self, server, pipe_diameter):
         self._server = server
-        self._client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
+        self._pipe_diameter = pipe_diameter
+        self._client = actionlib.ActionClient(names.PIRATE_ACTION, PirateAction)
+        self._handle = None     # keeps the goal's handle alive (actionlib tracks it weakly)
+        self.on_result = lambda success, message, refused: None
 
-    def send_goal(self, name_code, pipe_diameter, option=PirateGoal.NONE):
-        """Send a goal; (False, reason) when the server would refuse it."""
-        goal = PirateGoal(name=name_code, pipe_diameter=pipe_diameter, option=option)
+    def send_goal(self, goal):
+        """Send a :data:`pirate.panel.config.Goal`; (False, reason) when the server would refuse it."""
         if self._server.active:
             return False, 'a PAB is running (%s)' % self._server.active
-        self._client.send_goal(goal, done_cb=self._done)
+        self._handle = self._client.send_goal(
+            PirateGoal(name=goal.name, pipe_diameter=self._pipe_diameter, distance=goal.distance,
+                       speed=goal.speed, option=goal.option), transition_cb=self._transition)
         return True, ''
 
-    @staticmethod
-    def _done(status, result):
-        rospy.loginfo('PAB ended: %s', result.message if result else 'no result')
+    def _transition(self, handle):
+        if handle.get_comm_state() != actionlib.CommState.DONE:
+            return
+        result = handle.get_result()
+        status = handle.get_goal_status()
+        self.on_result(status == GoalStatus.SUCCEEDED, result.message if result else 'no result',
+                       status == GoalStatus.REJECTED)
 
     def cancel(self):
-        """Cancel the running goal."""
-        self._client.cancel_all_goals()
+        """Cancel the running goal, whoever sent it."""
         self._server.cancel()
 
     def is_active(self):
@@ -85,7 +99,8 @@ class PirateManager(object):
         self.server = PirateServer(self.prims, self.feed, book, self._start_robot,
                                    feedback=self._publish_feedback, log=rospy.loginfo,
                                    efforts=lambda: self._efforts,
-                                   pipe_diameter=int(rospy.get_param('~pipe_diameter', 90)))
+                                   pipe_diameter=int(rospy.get_param('~pipe_diameter', 90)),
+                                   authority=self._panel_refusal)
         self._progress_at = 0.0
         self._goal_lock = threading.Lock()
         self._current = None
@@ -106,8 +121,15 @@ class PirateManager(object):
         if not rospy.get_param('~panel', True):
             return None
         from pirate.panel.mapper_ros import MapperRos
-        return MapperRos(self.setpoint, self.control, self.limit, PabClient(self.server),
-                         publish_arrays=False)
+        client = PabClient(self.server, self.server.pipe_diameter)
+        panel = MapperRos(self.setpoint, self.control, self.limit, client, publish_arrays=False)
+        client.on_result = panel.mapper.pab_result
+        return panel
+
+    def _panel_refusal(self):
+        """The panel's veto on goals (stopped), or None without a panel."""
+        panel = getattr(self, 'panel', None)
+        return panel.mapper.goal_refusal() if panel is not None else None
 
     # --- robot side -------------------------------------------------------
     def _on_state(self, msg):

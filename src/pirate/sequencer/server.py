@@ -2,6 +2,8 @@
 
 Pure Python; :mod:`pirate.sequencer.manager_node` wires it to an actionlib
 ActionServer. Rules:
+- while the operator panel is stopped (``authority``) every goal, from any
+  client, is refused with that reason;
 - a goal it cannot do is refused at once with the reason (unknown or
   unbuilt PAB, no guards for the diameter, out-of-range drive, robot not
   clamped for Drive, no robot state, another goal running — never queued);
@@ -58,7 +60,7 @@ class PirateServer(object):
     """Goal checking, PAB execution and the server state machine."""
 
     def __init__(self, prims, feed, book, start_robot, feedback=None, log=None, efforts=None,
-                 pipe_diameter=90):
+                 pipe_diameter=90, authority=None):
         self.prims = prims
         self.feed = feed
         self.book = book
@@ -67,6 +69,7 @@ class PirateServer(object):
         self._log = log or (lambda text: None)
         self._lock = threading.Lock()
         self._efforts = efforts or dict     # newest bend efforts, mNm (the springs)
+        self._authority = authority or (lambda: None)   # the panel: a reason no goal may move
         self.pipe_diameter = pipe_diameter  # mm, of the last goal: the idle state's guards
         self.state = None           # the running PAB; None when idle (see :meth:`status`)
         self.active = None          # name of the running PAB
@@ -80,7 +83,7 @@ class PirateServer(object):
     def reserve(self, goal):
         """Check ``goal`` and, if it can run, mark it running. Return a reason or None."""
         with self._lock:
-            reason = self._check(goal)
+            reason = self._authority() or self._check(goal)
             if reason is None:
                 self.active = PABS[goal.name][0]
                 self.feed.clear_cancel()

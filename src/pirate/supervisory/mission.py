@@ -13,7 +13,7 @@ import math
 import yaml
 
 from pirate.robot import safety
-from pirate.sequencer.pabs import PABS
+from pirate.sequencer.goals import CODES as _CODES, OPTION_NAMES, OPTIONS, PAB_FIELDS, PAB_OPTIONS, built
 
 Step = collections.namedtuple('Step', 'pab code pipe_diameter distance speed option')
 Mission = collections.namedtuple('Mission', 'name steps')
@@ -21,14 +21,6 @@ StepResult = collections.namedtuple('StepResult', 'step status message robot_s w
 #: One line of a goal's trace as the result carries it (robot times, s).
 TracedPrimitive = collections.namedtuple('TracedPrimitive', 'name guard start end outcome')
 
-_CODES = {row[0]: code for code, row in PABS.items()}
-#: Pirate.action's option constants (SPEC 6).
-OPTIONS = {'NONE': 0, 'LEFT': 1, 'RIGHT': 2, 'STRAIGHT': 3}
-#: The options each PAB takes (SPEC 6, Table 4.4); the others take none.
-PAB_OPTIONS = {'CLAMP_SIDEWAYS': ('LEFT', 'RIGHT'), 'T_JOINT': ('LEFT', 'RIGHT', 'STRAIGHT'),
-               'MITRE_BEND': ('LEFT', 'RIGHT')}
-#: Keys a PAB's step may have besides ``pab`` and ``pipe_diameter``.
-PAB_FIELDS = {'DRIVE': ('distance', 'speed')}
 _INT, _FLOAT = 'tag:yaml.org,2002:int', 'tag:yaml.org,2002:float'
 MISSION_KEYS = ('name', 'pipe_diameter', 'steps')
 STEP_KEYS = ('pab', 'pipe_diameter', 'distance', 'speed', 'option')
@@ -102,7 +94,7 @@ class _Checker(object):
             self.error(fields['pab'], '%s: unknown PAB %r (known: %s)' % (what, fields['pab'].value,
                                                                           ', '.join(sorted(_CODES))))
             return None
-        if PABS[_CODES[pab]][1] is None:
+        if not built(pab):
             self.error(fields['pab'], '%s: PAB %s is not implemented yet' % (what, pab))
         for key in ('distance', 'speed'):
             if key in fields and key not in PAB_FIELDS.get(pab, ()):
@@ -198,7 +190,7 @@ def describe(step, default_speed=None):
         speed = step.speed or default_speed
         text += ' %+.0f mm at %s mm/s' % (step.distance, '%.0f' % speed if speed else 'the default')
     if step.option:
-        text += ' %s' % {v: k for k, v in OPTIONS.items()}[step.option]
+        text += ' %s' % OPTION_NAMES[step.option]
     return '%s, %d mm pipe' % (text, step.pipe_diameter)
 
 
