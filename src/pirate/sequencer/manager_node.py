@@ -20,10 +20,11 @@ import threading
 import time
 
 import actionlib
+import diagnostic_updater
 import rospy
 from actionlib_msgs.msg import GoalStatus
 
-from pirate import names
+from pirate import health, names
 from pirate.robot import commands
 from pirate.state.feed import RobotFeed, RobotView
 from pirate.sequencer.guards import GuardBook
@@ -112,6 +113,7 @@ class PirateManager(object):
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state, queue_size=5)
         rospy.Timer(rospy.Duration(0.1), self._tick)
         self.panel = self._compose_panel()
+        self._diagnostics = self._diagnose()
         threading.Thread(target=self._worker, name='pab_worker', daemon=True).start()
         self._action.start()
         rospy.loginfo('pirate_manager ready: guards for %s mm; nothing moves until Play or a PAB goal',
@@ -130,6 +132,18 @@ class PirateManager(object):
         """The panel's veto on goals (stopped), or None without a panel."""
         panel = getattr(self, 'panel', None)
         return panel.mapper.goal_refusal() if panel is not None else None
+
+    def _diagnose(self):
+        """diagnostic_updater: the Pirate Server and the freshness of the robot state, 1 Hz."""
+        updater = diagnostic_updater.Updater()
+        updater.setHardwareID('pirate')
+        updater.add('Pirate Server', lambda stat: health.fill(stat, health.server(
+            self.server.status(), self.server.active, self.server.primitive, self.server.cancelled,
+            self.server.pipe_diameter)))
+        updater.add('robot state', lambda stat: health.fill(stat, health.robot_state(
+            self.feed.since_last_state(), self.feed.feedback_timeout)))
+        rospy.Timer(rospy.Duration(1.0), lambda _event: updater.update())
+        return updater
 
     # --- robot side -------------------------------------------------------
     def _on_state(self, msg):
