@@ -21,6 +21,7 @@ import time
 
 import actionlib
 import diagnostic_updater
+import dynamic_reconfigure.server
 import rospy
 from actionlib_msgs.msg import GoalStatus
 
@@ -30,6 +31,8 @@ from pirate.state.feed import RobotFeed, RobotView
 from pirate.sequencer.guards import GuardBook
 from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, PirateGoal,
                         PirateResult, PrimitiveStep, RobotState, SetpointArray)
+from pirate.cfg import SequencerConfig
+from pirate.sequencer import tuning
 from pirate.sequencer.primitives import MotionPrimitives
 from pirate.sequencer.server import ABORTED, PREEMPTED, SUCCEEDED, Feedback, PirateServer
 from pirate.srv import ServerStatus, ServerStatusResponse
@@ -114,6 +117,7 @@ class PirateManager(object):
         rospy.Timer(rospy.Duration(0.1), self._tick)
         self.panel = self._compose_panel()
         self._diagnostics = self._diagnose()
+        self._reconfigure = self._tunables()
         threading.Thread(target=self._worker, name='pab_worker', daemon=True).start()
         self._action.start()
         rospy.loginfo('pirate_manager ready: guards for %s mm; nothing moves until Play or a PAB goal',
@@ -144,6 +148,21 @@ class PirateManager(object):
             self.feed.since_last_state(), self.feed.feedback_timeout)))
         rospy.Timer(rospy.Duration(1.0), lambda _event: updater.update())
         return updater
+
+    def _tunables(self):
+        """dynamic_reconfigure of cfg/Sequencer.cfg, starting from config/sequencer.yaml's values."""
+        for name, value in tuning.current(self.server.book.common, self.feed).items():
+            if not rospy.has_param('~' + name):
+                rospy.set_param('~' + name, value)
+        return dynamic_reconfigure.server.Server(SequencerConfig, self._on_tunables)
+
+    def _on_tunables(self, config, _level):
+        values = {name: config[name] for name in tuning.NAMES}
+        reason = self.server.tune(values)
+        if reason:
+            rospy.logwarn('tunables refused: %s', reason)
+            config.update(tuning.current(self.server.book.common, self.feed))
+        return config
 
     # --- robot side -------------------------------------------------------
     def _on_state(self, msg):

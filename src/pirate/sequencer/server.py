@@ -22,7 +22,7 @@ import traceback
 
 from pirate.state import feed as feeds
 from pirate.robot import safety
-from pirate.sequencer import clamp_state
+from pirate.sequencer import clamp_state, tuning
 from pirate.sequencer.guards import NoGuards
 from pirate.sequencer.pabs import PABS
 from pirate.sequencer.pabs.base import PabFailed
@@ -77,6 +77,7 @@ class PirateServer(object):
         self.primitive = ''
         self.trace = Trace()
         self._guards = None
+        self._tuning = None         # tunables waiting for the running goal to end
         prims.notify = self._on_primitive
 
     # --- accepting --------------------------------------------------------
@@ -146,11 +147,31 @@ class PirateServer(object):
             self._finish(pab, guards, outcome)
         return outcome
 
+    def tune(self, values):
+        """New tunables (dynamic_reconfigure): applied now when idle, else after this goal.
+
+        Returns the reason they were refused, or None.
+        """
+        with self._lock:
+            reason = tuning.problem(values, self.book.common)
+            if reason is None:
+                self._tuning = dict(values)
+                if not self.active:
+                    self._apply_tuning()
+            return reason
+
+    def _apply_tuning(self):
+        if self._tuning is not None:
+            tuning.apply(self._tuning, self.book.common, self.feed)
+            self._log('tunables applied: %s' % ', '.join('%s %g' % kv for kv in sorted(self._tuning.items())))
+            self._tuning = None
+
     def _finish(self, pab, guards, outcome):
         self._log(outcome.message)
         with self._lock:
             self.active = self.state = None
             self.pab_state = self.primitive = ''
+            self._apply_tuning()
         self._feedback(Feedback(self.status(), '', '', ''))
 
     def status(self):
