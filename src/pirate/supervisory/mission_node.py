@@ -71,7 +71,10 @@ class ActionGoalRunner(object):
         handle = self._client.send_goal(goal, transition_cb=on_transition)
         deadline = rospy.get_time() + self._timeout
         while not done.wait(0.1):   # wall poll; the goal's time limit is robot time
-            if rospy.is_shutdown() or rospy.get_time() > deadline:
+            if rospy.is_shutdown():
+                handle.cancel()
+                return 'interrupted', 'run_mission was stopped; goal cancelled', []
+            if rospy.get_time() > deadline:
                 handle.cancel()
                 return 'timeout', 'no result within %.0f s; goal cancelled' % self._timeout, []
         result = handle.get_result()
