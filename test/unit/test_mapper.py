@@ -359,6 +359,7 @@ def test_a_pab_that_did_not_succeed_blinks_its_button(rig):
     rig.play()
     rig.press(TRACK_NEXT)
     rig.pab.active = False
+    rig.mapper.tick()                         # the server is idle before its result arrives
     rig.mapper.pab_result(False, 'Clamp Straight aborted in clamping rear: timed out')
     assert any('aborted in clamping rear' in line for line in rig.logs)
     rig.mapper.tick()

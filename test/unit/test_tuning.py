@@ -42,7 +42,7 @@ def test_a_running_goal_keeps_its_settings_until_it_ends(server):
     assert server.tune(WIDER) is None
     assert server.book.for_diameter(90).region('straight') == (1.52, 1.62)
     server.active = None
-    server._finish(type('P', (), {'name': 'x'})(), None, type('O', (), {'message': 'done'})())
+    server._finish(type('O', (), {'message': 'done'})())
     assert server.book.for_diameter(90).region('straight') == (1.45, 1.69)
 
 

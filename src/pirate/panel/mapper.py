@@ -82,6 +82,7 @@ class Mapper(object):
         self._leds = {}             # button -> bool last sent
         self._burst = {}            # channel -> [window start s, count]
         self._pab_channel = None    # the PAB button whose goal runs (its LED is on)
+        self._sent_channel = None   # the PAB button of the last goal sent (its result may come late)
         self._blinks = {}           # button -> LED toggles still to do
         setpoint.enabled = False
         limit.enabled = False
@@ -247,7 +248,7 @@ class Mapper(object):
             self._refuse(entry, message)
             return
         self._log('%s: sent' % entry.function)
-        self._pab_channel = entry.channel
+        self._pab_channel = self._sent_channel = entry.channel
         self._set_led(entry.channel, True)
 
     def _refuse(self, entry, reason):
@@ -265,9 +266,10 @@ class Mapper(object):
         """A goal the panel sent has ended: tell the operator; blink unless it succeeded."""
         with self._lock:
             self._log('%s: %s' % ('PAB refused' if refused else 'PAB ended', message))
-            if not success and self._pab_channel is not None:
-                self._blinks[self._pab_channel] = BLINK_TOGGLES
-                self._pab_channel = None
+            if not success and self._sent_channel is not None:
+                self._blinks[self._sent_channel] = BLINK_TOGGLES
+            self._sent_channel = None
+
     # --- outputs ---------------------------------------------------------------
 
     def safe_setpoints(self):

@@ -144,7 +144,7 @@ class PirateServer(object):
             if outcome.status != SUCCEEDED:
                 self.prims.safe_hold()
             self.trace.end(self._robot_now(), outcome.status)
-            self._finish(pab, guards, outcome)
+            self._finish(outcome)
         return outcome
 
     def tune(self, values):
@@ -166,7 +166,7 @@ class PirateServer(object):
             self._log('tunables applied: %s' % ', '.join('%s %g' % kv for kv in sorted(self._tuning.items())))
             self._tuning = None
 
-    def _finish(self, pab, guards, outcome):
+    def _finish(self, outcome):
         self._log(outcome.message)
         with self._lock:
             self.active = self.state = None
