@@ -17,6 +17,14 @@ Each test/rostest/panel_*.test holds one scenario as the ``~steps`` param
                                          (active, preempted, succeeded, aborted)
   wait_setpoints_zero: {elements, timeout_s}
                                  the setpoint array on the wire has 0 there
+  wait_operator: {contains, timeout_s}   the panel told the operator (the
+                                         line the virtual panel shows)
+  wait_result: {index, status, timeout_s, message, guard, server_state}
+                                 the index-th goal result on /pirate/result
+                                 (any client) has that status, and its
+                                 message / a primitive's guard / the server
+                                 state after it contain those texts
+  other_client: {goal}           another action client sends this goal
 
 Timeouts are wall-clock seconds; the robot runs in simulated time (faster).
 Before the first step it waits for the robot state and for the manager to
@@ -32,10 +40,13 @@ import rostest
 import ready
 from actionlib_msgs.msg import GoalStatusArray
 from rosgraph_msgs.msg import Log
+from std_msgs.msg import String
+import actionlib
 
 from pirate import names
 from pirate.robot import tables
-from pirate.msg import MidiInput, MidiOutput, PirateActionResult, RobotState, SetpointArray
+from pirate.msg import (MidiInput, MidiOutput, PirateAction, PirateActionResult, PirateGoal, RobotState,
+                        SetpointArray)
 
 STATUS = {'active': 1, 'preempted': 2, 'succeeded': 3, 'aborted': 4, 'rejected': 5}
 POLL_S = 0.02
@@ -46,6 +57,9 @@ class PanelScenario(unittest.TestCase):
     def setUp(self):
         self.lock = threading.Lock()
         self.angles, self.leds, self.logs, self.statuses, self.setpoints = {}, {}, [], set(), None
+        self.told, self.results = [], []
+        rospy.Subscriber(names.OPERATOR_TOPIC, String, self._on_operator)
+        self.other = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state)
         rospy.Subscriber(names.MIDI_OUTPUT_TOPIC, MidiOutput, self._on_led)
         rospy.Subscriber('/rosout', Log, self._on_log)
@@ -74,6 +88,11 @@ class PanelScenario(unittest.TestCase):
     def _on_result(self, msg):
         with self.lock:
             self.statuses.add(msg.status.status)
+            self.results.append(msg)
+
+    def _on_operator(self, msg):
+        with self.lock:
+            self.told.append(msg.data)
 
     def _on_setpoints(self, msg):
         with self.lock:
@@ -142,6 +161,29 @@ class PanelScenario(unittest.TestCase):
         indices = [tables.element(name).index for name in arg['elements']]
         self._until(lambda: self.setpoints is not None and all(self.setpoints[i] == 0 for i in indices),
                     arg.get('timeout_s', 10), 'zero setpoints at %s' % arg['elements'])
+
+    def step_wait_operator(self, arg):
+        self._until(lambda: any(arg['contains'] in line for line in self.told),
+                    arg.get('timeout_s', 10), 'the panel to say %r (said %s)' % (arg['contains'], self.told))
+
+    def step_wait_result(self, arg):
+        index = arg['index']
+        self._until(lambda: len(self.results) > index, arg.get('timeout_s', 60),
+                    'result %d (have %d)' % (index, len(self.results)))
+        with self.lock:
+            msg = self.results[index]
+        result = msg.result
+        what = 'result %d: %s' % (index, result)
+        self.assertEqual(msg.status.status, STATUS[arg['status']], what)
+        self.assertIn(arg.get('message', ''), result.message, what)
+        self.assertIn(arg.get('server_state', ''), result.server_state, what)
+        if 'guard' in arg:
+            self.assertTrue(any(arg['guard'] in p.guard for p in result.primitives), what)
+
+    def step_other_client(self, arg):
+        self.assertTrue(self.other.wait_for_server(rospy.Duration(30)), 'no action server')
+        spec = arg['goal']
+        self.other.send_goal(PirateGoal(name=int(spec['name']), pipe_diameter=int(spec.get('pipe_diameter', 90))))
 
     # --- the test ----------------------------------------------------------------------
     def test_scenario(self):

@@ -28,6 +28,7 @@ MODULES = {
     'tf2_ros': 'python3-tf2-ros', 'yaml': 'python3-yaml', 'serial': 'python3-serial',
     'pygame': 'python3-pygame', 'numpy': 'python3-numpy', 'matplotlib': 'python3-matplotlib',
     'PIL': 'python3-pil', 'hypothesis': 'python3-hypothesis', 'pytest': 'python3-pytest',
+    'diagnostic_updater': 'python3-diagnostic-updater', 'dynamic_reconfigure': 'python3-dynamic-reconfigure',
 }
 #: Third-party modules from PyPI (scripts/pip-requirements.txt, installed
 #: into .venv by scripts/ensure_deps) and their rosdep keys in package.xml.

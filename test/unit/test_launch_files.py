@@ -32,3 +32,81 @@ def test_robot_argument_selects_a_robot_end(robot):
     assert '/pirate_manager' in nodes.stdout and '/pirate_state' in nodes.stdout
     expected = {'sim': '/sim_robot', 'fil': '/fil_robot', 'real': '/serial_node'}[robot]
     assert expected in nodes.stdout
+
+
+# --- issue 13 finding 6: every argument documented, values checked ---------
+
+def _user_args(path):
+    """(name, attributes) of every <arg> a user can set (those with a default)."""
+    import xml.etree.ElementTree as ET
+    return [(a.get('name'), a.attrib) for a in ET.parse(path).getroot().iter('arg')
+            if 'value' not in a.attrib]
+
+
+@pytest.mark.parametrize('path', LAUNCH_FILES, ids=os.path.basename)
+def test_every_argument_has_a_doc_and_a_working_default(path):
+    for name, attrib in _user_args(path):
+        assert attrib.get('doc', '').strip(), '%s: arg %s has no doc' % (os.path.basename(path), name)
+        assert attrib.get('default', '') != '', '%s: arg %s has no default' % (os.path.basename(path), name)
+    listed = subprocess.run(['roslaunch', '--ros-args', path], capture_output=True, text=True, timeout=60)
+    assert listed.returncode == 0 and 'Required' not in listed.stdout, listed.stdout + listed.stderr
+
+
+ENTRIES = ('sim.launch', 'Manager.launch', 'demo.launch', 'robot.launch')
+
+
+@pytest.mark.parametrize('entry', ENTRIES)
+def test_every_entry_launch_records_to_the_bag_asked(entry):
+    asked = ['record:=true', 'bag:=/tmp/pirate_check.bag']
+    assert '/record_run' not in _launch(entry).stdout          # off by default
+    command = subprocess.run(['roslaunch', '--args', '/record_run', os.path.join(LAUNCH_DIR, entry)] + asked,
+                             capture_output=True, text=True, timeout=60)
+    assert command.returncode == 0, command.stderr
+    assert '-O /tmp/pirate_check.bag' in command.stdout, command.stdout
+
+
+def _launch(entry, *args):
+    return subprocess.run(['roslaunch', '--nodes', os.path.join(LAUNCH_DIR, entry)] + list(args),
+                          capture_output=True, text=True, timeout=60)
+
+
+BAD_ARGS = [   # entry, argument, words of the error
+    ('sim.launch', 'pipe_diameter:=100', 'only 90 and 110 mm'),
+    ('sim.launch', 'pipe_diameter:=abc', 'pipe_diameter:=abc'),
+    ('Manager.launch', 'pipe_diameter:=100', 'only 90 and 110 mm'),
+    ('demo.launch', 'pipe_diameter:=75', 'only 90 and 110 mm'),
+    ('robot.launch', 'robot:=simulated', 'use sim, fil or real'),
+    ('robot.launch', 'rate:=0', 'above 0'),
+    ('robot.launch', 'orientation:=up', 'a number of rad'),
+    ('Manager.launch', 'panel:=keyboard', 'use virtual, midi or none'),
+    ('sim.launch', 'rate:=5', 'needs use_sim_time:=true'),
+]
+
+
+@pytest.mark.parametrize('entry,arg,words', BAD_ARGS)
+def test_bad_argument_values_stop_roslaunch_with_the_reason(entry, arg, words):
+    nodes = _launch(entry, arg)
+    assert nodes.returncode != 0
+    assert words in nodes.stdout + nodes.stderr
+    assert 'Traceback' not in nodes.stdout + nodes.stderr
+
+
+@pytest.mark.parametrize('args,present,absent', [
+    (['headless:=true'], ['/pirate_manager', '/sim_robot'], ['/virtual_panel', '/rviz']),
+    (['use_sim_time:=true', 'rate:=5', 'gui:=false'], ['/virtual_panel'], ['/rviz']),
+])
+def test_sim_launch_headless_and_sim_time(args, present, absent):
+    nodes = _launch('sim.launch', *args)
+    assert nodes.returncode == 0, nodes.stderr
+    for node in present:
+        assert node in nodes.stdout
+    for node in absent:
+        assert node not in nodes.stdout
+
+
+def test_the_pipe_diameter_reaches_the_manager_and_the_robot():
+    dump = subprocess.run(['roslaunch', '--dump-params', os.path.join(LAUNCH_DIR, 'sim.launch'),
+                           'pipe_diameter:=110', 'headless:=true'], capture_output=True, text=True, timeout=60)
+    assert dump.returncode == 0, dump.stderr
+    assert "/pirate_manager/pipe_diameter: 110" in dump.stdout
+    assert "/sim_robot/pipe_diameter: 110" in dump.stdout

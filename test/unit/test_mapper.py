@@ -30,8 +30,8 @@ class FakePab(object):
     def __init__(self, accept=True):
         self.goals, self.cancels, self.active, self.accept = [], 0, False, accept
 
-    def send_goal(self, name, pipe_diameter, option):
-        self.goals.append((name, pipe_diameter, option))
+    def send_goal(self, goal):
+        self.goals.append(tuple(goal))
         self.active = self.accept
         return self.accept, '' if self.accept else 'server busy'
 
@@ -247,13 +247,14 @@ def test_track_next_sends_clamp_straight_and_refuses_a_second(rig):
     rig.press(REWIND)
     rig.play()
     rig.press(TRACK_NEXT)
-    assert rig.pab.goals == [(0, 90, 0)] and rig.leds[TRACK_NEXT] is True
+    assert rig.pab.goals == [(0, 0.0, 0.0, 0)] and rig.leds[TRACK_NEXT] is True
     rig.press(TRACK_NEXT)
     assert len(rig.pab.goals) == 1
     assert any('a PAB is running' in line for line in rig.logs)
     rig.press(STOP)
     assert rig.pab.cancels == 1
-    rig.mapper.tick()
+    for _ in range(8):                        # the refusal's blink, then its state
+        rig.mapper.tick()
     assert rig.leds[TRACK_NEXT] is False
 
 
@@ -290,7 +291,7 @@ def test_set_plus_record_sends_no_limits_all_once_per_press(rig):
 @pytest.mark.parametrize('channel,value,reason', [
     (99, 64, 'not on the panel map'), (SLIDER_BEND_I, 300, 'outside 0-127'),
     (SLIDER_BEND_I, -1, 'outside 0-127'), (SLIDER_BEND_I, 1.5, 'integers'),
-    (44, 127, 'not used')])
+    (46, 127, 'not used')])
 def test_bad_input_logged_once_and_ignored(rig, channel, value, reason):
     rig.play()
     before = rig.setpoint.get_all()
@@ -319,3 +320,65 @@ def test_tick_follows_modes_changed_by_someone_else(rig):
     rig.control.set_mode('bend_ii', 'torque')    # e.g. a PAB switched it
     rig.mapper.tick()
     assert rig.leds[35] is True
+
+
+# --- issue 13: every PAB from the panel, refusals shown, the panel's authority ---
+
+PAB_BUTTONS = {   # channel: (PAB code, distance mm, speed mm/s, option code), config/nanokontrol2.yaml
+    59: (0, 0.0, 0.0, 0),        # track >: Clamp Straight
+    58: (5, 0.0, 0.0, 0),        # track <: Home
+    62: (4, 50.0, 0.0, 0),       # marker >: Drive forwards
+    61: (4, -50.0, 0.0, 0),      # marker <: Drive backwards
+    44: (2, 0.0, 0.0, 3),        # fast forward: T-joint straight on (not built: the server refuses)
+}
+
+
+@pytest.mark.parametrize('button', sorted(PAB_BUTTONS))
+def test_every_pab_button_sends_its_goal(rig, button):
+    rig.press(REWIND)
+    rig.play()
+    rig.press(button)
+    assert rig.pab.goals == [PAB_BUTTONS[button]]
+    assert rig.leds[button] is True
+
+
+def test_a_refused_pab_button_blinks_and_says_why(rig):
+    rig.press(REWIND)
+    rig.press(TRACK_NEXT)                     # before Play
+    assert rig.pab.goals == [] and any('refused: press Play first' in line for line in rig.logs)
+    seen = []
+    for _ in range(10):
+        rig.mapper.tick()
+        seen.append(rig.leds.get(TRACK_NEXT))
+    assert seen[:6] == [True, False, True, False, True, False]    # three blinks
+    assert seen[6:] == [False] * 4                               # then its state again
+
+
+def test_a_pab_that_did_not_succeed_blinks_its_button(rig):
+    rig.press(REWIND)
+    rig.play()
+    rig.press(TRACK_NEXT)
+    rig.pab.active = False
+    rig.mapper.tick()                         # the server is idle before its result arrives
+    rig.mapper.pab_result(False, 'Clamp Straight aborted in clamping rear: timed out')
+    assert any('aborted in clamping rear' in line for line in rig.logs)
+    rig.mapper.tick()
+    rig.mapper.tick()
+    assert rig.leds[TRACK_NEXT] is False
+    rig.mapper.tick()
+    assert rig.leds[TRACK_NEXT] is True       # blinking, not steady
+
+
+def test_the_panel_refuses_goals_while_stopped(rig):
+    assert 'stopped' in rig.mapper.goal_refusal() and 'Play' in rig.mapper.goal_refusal()
+    rig.play()
+    assert rig.mapper.goal_refusal() is None
+    rig.press(STOP)
+    assert 'stopped' in rig.mapper.goal_refusal()
+
+
+def test_stop_cancels_another_clients_goal_in_manual_mode(rig):
+    rig.play()
+    rig.pab.active = True                     # a goal from a terminal runs
+    rig.press(STOP)
+    assert rig.pab.cancels == 1

@@ -35,12 +35,14 @@ SPEC5 = {
     51: ('single_stop', 'bend_ii', (M,)), 52: ('single_stop', 'bend_i', (M,)),
     53: ('single_stop', 'front_tilt', (M,)), 54: ('single_stop', 'camera_tilt', (M,)),
     55: ('single_stop', 'wheels', (M,)),
-    58: ('none', None, (P,)), 59: ('pab', None, (P,)), 60: ('set_modifier', None, (M,)),
+    58: ('pab', None, (P,)), 59: ('pab', None, (P,)), 60: ('set_modifier', None, (M,)),
     65: ('calibrate', 'bend_iv', (M,)), 66: ('calibrate', 'bend_iii', (M,)),
     67: ('calibrate', 'bend_ii', (M,)), 68: ('calibrate', 'bend_i', (M,)),
     69: ('calibrate', 'front_tilt', (M,)), 70: ('calibrate', 'camera_tilt', (M,)),
 }
-UNUSED = (44, 46, 48, 61, 62, 64, 71)
+UNUSED = (46, 48, 64, 71)
+# Free in Table E.2, PAB buttons here (issue 13: every PAB from the panel).
+SPEC5.update({44: ('pab', None, (P,)), 61: ('pab', None, (P,)), 62: ('pab', None, (P,))})
 
 
 @pytest.fixture(scope='module')
@@ -90,11 +92,31 @@ def test_magnitudes_are_those_of_spec3(cfg):
     assert gains[16]['pwm'] == gains[22]['pwm'] == 2
 
 
-def test_clamp_straight_goal_uses_the_action_codes(cfg):
+def test_pab_goals_use_the_action_codes(cfg):
     text = open(os.path.join(ROOT, 'action', 'Pirate.action')).read()
     codes = {k: int(v) for k, v in re.findall(r'uint8 (\w+) = (\d+)', text)}
     goal = cfg.channels[59].goal
-    assert (goal.name, goal.pipe_diameter, goal.option) == (codes['CLAMP_STRAIGHT'], 90, codes['NONE'])
+    assert (goal.name, goal.option) == (codes['CLAMP_STRAIGHT'], codes['NONE'])
+    goal = cfg.channels[44].goal
+    assert (goal.name, goal.option) == (codes['T_JOINT'], codes['STRAIGHT'])
+    assert cfg.channels[58].goal.name == codes['HOME'] and cfg.channels[62].goal.name == codes['DRIVE']
+
+
+@pytest.mark.parametrize('goal,needle', [
+    ({'pab': 'FLY'}, 'one of'),
+    ({'pab': 'HOME', 'distance': 5}, 'takes no distance'),
+    ({'pab': 'HOME', 'pipe_diameter': 90}, 'takes no pipe_diameter'),
+    ({'pab': 'T_JOINT'}, 'option NONE'),
+    ({'pab': 'CLAMP_STRAIGHT', 'option': 'LEFT'}, 'option LEFT'),
+    ({'pab': 'DRIVE', 'speed': 100}, 'needs a distance'),
+    ({'pab': 'DRIVE', 'distance': 50, 'speed': 400}, 'speed'),
+    ({'pab': 'DRIVE', 'distance': 'far'}, 'numbers'),
+])
+def test_bad_pab_goals_fail_at_load(goal, needle):
+    raw = {'channel': 59, 'action': 'pab', 'modes': ['pab'], 'goal': goal}
+    with pytest.raises(panel_config.ConfigError) as err:
+        panel_config.from_params({'channels': [raw]})
+    assert needle in str(err.value) and '59' in str(err.value)
 
 
 @pytest.mark.parametrize('change,needle', [

@@ -87,7 +87,8 @@ print(pygame.display.get_driver())
 panel = virtual.VirtualPanel()
 for button in (41, 43, 36, 59):
     panel.set_led(button, True)
-panel.pab_text = 'PAB running: Clamp Straight / moving front'
+panel.pab_text = 'PAB running: Clamp Straight / moving front / move front front_tilt 0.21/0.40 (2.1 of 15 s)'
+panel.operator_text = 'PAB Clamp Straight: sent'
 panel.draw(screen)
 pygame.display.flip()
 pygame.image.save(screen, sys.argv[1])
@@ -132,3 +133,17 @@ def test_screenshot_under_xvfb_shows_the_panel():
     assert tuple(image.get_at(lit))[:3] == virtual.BUTTON_LIT
     assert tuple(image.get_at(dark))[:3] == virtual.BUTTON_OFF
     assert tuple(image.get_at((virtual.WIDTH // 2, virtual.HEIGHT - 8)))[:3] == virtual.BODY
+
+
+def test_feedback_line_shows_the_numbers_and_idle_state():
+    virtual_node = pytest.importorskip('pirate.panel.virtual_node')
+    msg = pytest.importorskip('pirate.msg')
+    fb = msg.PirateFeedback(server_state='Clamp Straight', pab_state='clamping rear', primitive='clamp rear',
+                            guard='bend_iv <= -0.77 and bend_iii >= 0.35', elapsed=2.5, timeout=15.0,
+                            guard_joints=['bend_iv', 'bend_iii'], guard_values=[-0.5, 0.2],
+                            guard_thresholds=[-0.77, 0.35])
+    line = virtual_node.feedback_text(fb)
+    assert 'clamp rear bend_iv -0.50/-0.77 bend_iii 0.20/0.35 (2.5 of 15 s)' in line
+    idle = virtual_node.feedback_text(msg.PirateFeedback(server_state='Idle Partly Clamped (front full, '
+                                                                      'rear free)'))
+    assert idle.startswith('Server: Idle Partly Clamped') and 'running' not in idle

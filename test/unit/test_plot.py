@@ -120,3 +120,25 @@ def test_mismatched_lengths_are_refused(tmp_path):
     run = _run()._replace(orientation=[1.57])
     with pytest.raises(ValueError, match='orientation'):
         plot.plot_run(run, str(tmp_path / 'x.png'))
+
+
+# --- issue 13: the plot tells the whole run ---------------------------------
+
+def test_labels_of_close_transitions_do_not_overlap():
+    times = [0.0, 0.1, 0.2, 5.0, 5.05, 10.0]
+    rows = plot.label_rows(times, span=10.0, gap=0.035)
+    assert rows == [0, 1, 2, 0, 1, 0]
+    for row in set(rows):
+        on_row = [t for t, r in zip(times, rows) if r == row]
+        assert all(b - a >= 0.35 for a, b in zip(on_row, on_row[1:]))
+
+
+def test_drive_panel_and_events(tmp_path):
+    run = _run()._replace(odometry=[t * 10.0 for t in _run().times], velocity=[10.0] * 120,
+                          events=[(7.0, 'cancelled: Clamp Straight cancelled during clamping front')],
+                          title='Clamp Straight - 90 mm pipe - cancelled - run.bag')
+    drawn, _ = plot.plot_run(run, str(tmp_path / 'x.png'))
+    assert drawn[-1].title.startswith('Drive') and [s[0] for s in drawn[-1].series] == [
+        'Odometry [mm]', 'Wheel speed [mm/s]']
+    with pytest.raises(ValueError, match='Odometry'):
+        plot.panels(run._replace(odometry=[1.0]))

@@ -7,7 +7,8 @@ import pytest
 
 rosbag = pytest.importorskip('rosbag', reason='rosbag missing (Debian python3-rosbag)')
 import rospy  # noqa: E402
-from pirate.msg import PirateActionFeedback, PirateActionGoal, RobotState  # noqa: E402
+from pirate.msg import (PirateActionFeedback, PirateActionGoal, PirateActionResult,  # noqa: E402
+                        PrimitiveStep, RobotState)
 
 from pirate import names
 from pirate.robot import tables  # noqa: E402
@@ -92,3 +93,22 @@ def test_plot_run_refuses_a_file_that_is_no_bag(tmp_path):
     path.write_text('hello')
     with pytest.raises(SystemExit, match='plot_run'):
         plot_cli.main([str(path), '-o', str(tmp_path / 'x.png')])
+
+
+def test_markers_from_the_trace_events_and_title(tmp_path):
+    """The result's trace wins over lossy feedback; a cancel is an event; the title says what ran."""
+    path = str(tmp_path / 'run.bag')
+    _write(path)
+    with rosbag.Bag(path, 'a') as out:
+        result = PirateActionResult()
+        result.status.status = 2        # PREEMPTED
+        result.result.message = 'Clamp Straight cancelled during clamping front'
+        result.result.primitives = [PrimitiveStep(name=n, start=100.1 + 2.0 * i, end=100.1 + 2.0 * i + 1.5)
+                                    for i, n in enumerate(('move front', 'clamp rear', 'clamp front', 'x'))]
+        out.write(names.PIRATE_ACTION + '/result', result, rospy.Time.from_sec(106.5))
+    run, _ = bag.read_run(path)
+    assert [p for _, p in run.markers] == ['move front', 'clamp rear', 'clamp front', 'x']
+    assert [t for t, _ in run.markers] == pytest.approx([0.0, 2.0, 4.0, 6.0], abs=1e-6)
+    assert run.events == [(pytest.approx(6.4), 'cancelled: Clamp Straight cancelled during clamping front')]
+    assert run.title.startswith('Clamp Straight - 90 mm pipe - cancelled - run.bag')
+    assert len(run.odometry) == len(run.velocity) == len(run.times)

@@ -9,6 +9,7 @@ robot. Pure Python: the map comes in as the dict rosparam loaded (or
 import collections
 
 from pirate.robot import safety, tables
+from pirate.sequencer import goals
 
 MANUAL, PAB = 'manual', 'pab'
 OPERATION_MODES = (MANUAL, PAB)
@@ -28,7 +29,9 @@ Scale = collections.namedtuple('Scale', 'gain centre')
 Entry = collections.namedtuple(
     'Entry', 'channel control function action modes target scale full_scale '
              'on_mode off_mode goal')
-Goal = collections.namedtuple('Goal', 'name pipe_diameter option')
+#: A PAB button's goal: code (Pirate.action name), distance mm, speed mm/s, option
+#: code. No pipe diameter: every panel goal uses the launch's ``pipe_diameter``.
+Goal = collections.namedtuple('Goal', 'name distance speed option')
 PanelConfig = collections.namedtuple(
     'PanelConfig', 'name press_threshold burst_max_per_s initial_modes channels')
 
@@ -75,17 +78,35 @@ def _entry(raw):
         for mode in (on_mode, off_mode):
             if mode not in element.modes:
                 raise ConfigError('%s: %s has no %r mode (modes: %s)' % (where, target, mode, element.modes))
-    goal = None
-    if action == 'pab':
-        g = raw.get('goal') or {}
-        try:
-            goal = Goal(int(g['name']), int(g['pipe_diameter']), int(g.get('option', 0)))
-        except (KeyError, TypeError, ValueError):
-            raise ConfigError('%s: a pab channel needs goal {name, pipe_diameter, option}' % where)
+    goal = _goal(where, raw.get('goal')) if action == 'pab' else None
     full_scale = raw.get('full_scale')
     return Entry(int(raw['channel']), str(raw.get('control', '')), str(raw.get('function', '')),
                  action, modes, target, scale,
                  None if full_scale is None else int(full_scale), on_mode, off_mode, goal)
+
+
+def _goal(where, raw):
+    """The :data:`Goal` of a pab entry, ``{pab: NAME, distance, speed, option}``."""
+    if not isinstance(raw, dict) or str(raw.get('pab', '')).upper() not in goals.CODES:
+        raise ConfigError('%s: a pab channel needs goal {pab: one of %s}'
+                          % (where, ', '.join(sorted(goals.CODES))))
+    pab = str(raw['pab']).upper()
+    allowed = ('pab', 'option') + goals.PAB_FIELDS.get(pab, ())
+    unknown = sorted(set(raw) - set(allowed))
+    if unknown:
+        raise ConfigError('%s: %s takes no %s' % (where, pab, ', '.join(unknown)))
+    option = str(raw.get('option', 'NONE')).upper()
+    if option not in goals.PAB_OPTIONS.get(pab, ('NONE',)):
+        raise ConfigError('%s: option %s for %s (allowed: %s)' % (
+            where, option, pab, ' / '.join(goals.PAB_OPTIONS.get(pab, ('NONE',)))))
+    try:
+        distance, speed = float(raw.get('distance', 0.0)), float(raw.get('speed', 0.0))
+    except (TypeError, ValueError):
+        raise ConfigError('%s: distance and speed must be numbers' % where)
+    if pab == 'DRIVE' and (distance == 0 or not 0 <= speed <= safety.DRIVE_MAX_MM_S):
+        raise ConfigError('%s: DRIVE needs a distance (mm, not 0) and a speed in [0, %g] mm/s'
+                          % (where, safety.DRIVE_MAX_MM_S))
+    return Goal(goals.CODES[pab], distance, speed, goals.OPTIONS[option])
 
 
 def from_params(params):

@@ -19,6 +19,12 @@ Rules it enforces (and why):
   touches a setpoint (report 3.3);
 - in PAB mode only the controls whose map entry lists ``pab`` work; the
   operator is told once per mode entry;
+- the panel is the operator's authority: while it is stopped no goal from
+  any client may move the robot (:meth:`goal_refusal`, asked by the Pirate
+  Server), and Stop cancels whatever goal runs, in either mode;
+- a refused PAB button and a PAB that did not succeed blink that button's
+  LED (the hardware panel has no screen); every message goes to ``log``,
+  which the ROS edge shows on the virtual panel;
 - limits are not checked here: every write goes through pirate.robot.safety inside
   Setpoint / Limit.
 
@@ -37,7 +43,10 @@ from pirate.panel.config import MANUAL, PAB
 
 #: The control-array index where play / stop / no-limits-all travel (SPEC 3).
 COMMAND_INDEX = tables.element('rear_module').index
-#: Modes in which a 0 setpoint means "motor off", zeroed by Stop.
+#: LED toggles (10 Hz ticks) of one blink signal: three blinks in 0.6 s.
+BLINK_TOGGLES = 6
+#: Why a goal is refused while the panel is stopped.
+STOPPED_REFUSAL = 'the operator panel is stopped: press Play on the panel first'
 
 
 class Mapper(object):
@@ -45,8 +54,9 @@ class Mapper(object):
 
     ``config``: a :class:`pirate.panel.config.PanelConfig` (or the raw param
     dict). ``setpoint``/``control``/``limit``: the shared pirate.robot.commands
-    objects. ``pab_client``: ``send_goal(name_code, pipe_diameter, option) ->
-    (accepted, message)``, ``cancel()``, ``is_active() -> bool``.
+    objects. ``pab_client``: ``send_goal(goal) -> (accepted, message)`` with a
+    :data:`pirate.panel.config.Goal`, ``cancel()``, ``is_active() -> bool``;
+    it reports the end of a goal to :meth:`pab_result`.
     ``led(button, on)`` lights a panel LED; ``log(text)`` tells the operator;
     ``clock()`` returns seconds (monotonic), used for burst detection.
     """
@@ -72,6 +82,8 @@ class Mapper(object):
         self._leds = {}             # button -> bool last sent
         self._burst = {}            # channel -> [window start s, count]
         self._pab_channel = None    # the PAB button whose goal runs (its LED is on)
+        self._sent_channel = None   # the PAB button of the last goal sent (its result may come late)
+        self._blinks = {}           # button -> LED toggles still to do
         setpoint.enabled = False
         limit.enabled = False
         for name, mode in config.initial_modes.items():
@@ -226,18 +238,37 @@ class Mapper(object):
 
     def _on_pab(self, entry, value):
         if not self.playing:
-            self._log('%s refused: press Play first' % entry.function)
+            self._refuse(entry, 'press Play first')
             return
         if self._pab.is_active():
-            self._log('%s refused: a PAB is running; wait for it or press Stop to cancel it'
-                      % entry.function)
+            self._refuse(entry, 'a PAB is running; wait for it or press Stop to cancel it')
             return
-        accepted, message = self._pab.send_goal(*entry.goal)
-        self._log('%s: %s%s' % (entry.function, 'sent' if accepted else 'refused',
-                                ' (%s)' % message if message else ''))
-        if accepted:
-            self._pab_channel = entry.channel
-            self._set_led(entry.channel, True)
+        accepted, message = self._pab.send_goal(entry.goal)
+        if not accepted:
+            self._refuse(entry, message)
+            return
+        self._log('%s: sent' % entry.function)
+        self._pab_channel = self._sent_channel = entry.channel
+        self._set_led(entry.channel, True)
+
+    def _refuse(self, entry, reason):
+        self._log('%s refused: %s' % (entry.function, reason))
+        self._blinks[entry.channel] = BLINK_TOGGLES
+
+    # --- authority and results ------------------------------------------------------
+
+    def goal_refusal(self):
+        """Why no goal may move the robot now (the panel is stopped), or None."""
+        with self._lock:
+            return None if self.playing else STOPPED_REFUSAL
+
+    def pab_result(self, success, message, refused=False):
+        """A goal the panel sent has ended: tell the operator; blink unless it succeeded."""
+        with self._lock:
+            self._log('%s: %s' % ('PAB refused' if refused else 'PAB ended', message))
+            if not success and self._sent_channel is not None:
+                self._blinks[self._sent_channel] = BLINK_TOGGLES
+            self._sent_channel = None
 
     # --- outputs ---------------------------------------------------------------
 
@@ -283,14 +314,25 @@ class Mapper(object):
                     on = self._set_held
                 else:
                     continue
-                self._set_led(entry.channel, on, force)
+                if entry.channel not in self._blinks:
+                    self._set_led(entry.channel, on, force)
 
     def tick(self):
         """Called at 10 Hz: follow the PAB state and the control modes on the LEDs."""
         with self._lock:
             if self._pab_channel is not None and not self._pab.is_active():
                 self._pab_channel = None
+            self._blink()
             self.refresh_leds()
+
+    def _blink(self):
+        """One step of every running blink signal; the LED returns to its state after."""
+        for button, left in list(self._blinks.items()):
+            if left <= 0:
+                del self._blinks[button]
+                continue
+            self._set_led(button, left % 2 == 0)
+            self._blinks[button] = left - 1
 
     # --- operator messages -------------------------------------------------------
 

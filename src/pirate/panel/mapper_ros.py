@@ -13,6 +13,8 @@ Setpoint / Control / Limit objects (report 4.5: one instance of each)::
   behind thousands of slider values);
 - publishes MidiOutput on ``names.MIDI_OUTPUT_TOPIC``; every LED is sent
   again when a panel driver or virtual panel connects;
+- tells the operator (refusals, results, mode changes) at INFO on rosout
+  and on ``names.OPERATOR_TOPIC`` (latched), which the virtual panel shows;
 - runs a 10 Hz timer that calls ``mapper.tick()`` (LEDs follow modes a PAB
   changed) and, unless ``publish_arrays=False``, ``setpoint.tick()`` and
   ``limit.tick()`` (the 10 Hz publishing of report 4.6; pass False if the
@@ -25,6 +27,7 @@ import rospy
 from pirate import names
 from pirate.panel.mapper import Mapper
 from pirate.msg import MidiInput, MidiOutput
+from std_msgs.msg import String
 
 TICK_PERIOD_S = 0.1
 
@@ -50,16 +53,21 @@ class MapperRos(object):
         self._publish_arrays = publish_arrays
         self._led_pub = rospy.Publisher(names.MIDI_OUTPUT_TOPIC, MidiOutput, queue_size=100,
                                         subscriber_listener=_LedResync(self))
+        self._operator_pub = rospy.Publisher(names.OPERATOR_TOPIC, String, queue_size=20, latch=True)
         if config is None:
             config = rospy.get_param('~')
         self.mapper = Mapper(config, setpoint, control, limit, pab_client,
-                             self._publish_led, rospy.logwarn, time.monotonic)
+                             self._publish_led, self._tell, time.monotonic)
         self._sub = rospy.Subscriber(names.MIDI_INPUT_TOPIC, MidiInput, self._on_midi,
                                      queue_size=100)
         self._timer = rospy.Timer(rospy.Duration(TICK_PERIOD_S), self._tick)
 
     def _publish_led(self, button, on):
         self._led_pub.publish(MidiOutput(button=button, value=on))
+
+    def _tell(self, text):
+        rospy.loginfo('panel: %s', text)
+        self._operator_pub.publish(String(data=text))
 
     def _on_midi(self, msg):
         self.mapper.handle(msg.channel, msg.value)

@@ -13,17 +13,26 @@ import sys
 import threading
 import time
 
+import diagnostic_updater
 import rospy
 
-from pirate import names
+from pirate import health, names
 from pirate.msg import MidiInput, MidiOutput
 from pirate.panel import midi
 from pirate.panel.midi_backend import PygameMidiBackend
 
 
 def _link(want_input):
-    return midi.MidiLink(PygameMidiBackend(), str(rospy.get_param('~device', '')), want_input,
+    """The MIDI link, with a 'panel device' diagnostic (diagnostic_updater) at 1 Hz."""
+    wanted = str(rospy.get_param('~device', ''))
+    link = midi.MidiLink(PygameMidiBackend(), wanted, want_input,
                          rospy.logwarn, retry_s=float(rospy.get_param('~retry_s', 1.0)))
+    updater = diagnostic_updater.Updater()
+    updater.setHardwareID('nanoKONTROL2 %s' % wanted)
+    updater.add('panel device', lambda stat: health.fill(stat, health.panel_device(
+        link.connected, wanted, link.info.name if link.connected and link.info else '')))
+    rospy.Timer(rospy.Duration(1.0), lambda _event: updater.update())
+    return link
 
 
 def main_input():

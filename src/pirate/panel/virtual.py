@@ -80,6 +80,7 @@ class VirtualPanel(object):
         self.leds = {}
         self.selected = 0
         self.pab_text = 'PAB server: no news yet'
+        self.operator_text = ''     # the Mapper's last message (refusals, results)
         self._dragging = None
         self._held = None
         self._font = None
@@ -174,7 +175,8 @@ class VirtualPanel(object):
     def status_lines(self):
         run = 'playing' if self.leds.get(PLAY_BUTTON) else 'stopped'
         return ['Operation mode: %s   (%s)   strip %d selected'
-                % (self.operation_mode, run, self.selected + 1), self.pab_text]
+                % (self.operation_mode, run, self.selected + 1), self.pab_text,
+                'Panel: %s' % self.operator_text if self.operator_text else '']
 
     def draw(self, surface):
         """Draw the whole panel on ``surface`` (WIDTH x HEIGHT)."""
@@ -185,7 +187,7 @@ class VirtualPanel(object):
         pygame.draw.rect(surface, PANEL_EDGE, surface.get_rect(), 3)
         pygame.draw.line(surface, PANEL_EDGE, (0, STATUS_H), (WIDTH, STATUS_H), 2)
         for i, line in enumerate(self.status_lines()):
-            surface.blit(self._font.render(line, True, TEXT), (14, 10 + i * 22))
+            surface.blit(self._font.render(line, True, TEXT), (14, 8 + i * 18))
         for control in self.controls:
             getattr(self, '_draw_' + control.kind)(surface, control)
 

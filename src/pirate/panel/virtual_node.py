@@ -4,7 +4,9 @@ Publishes a MidiInput on ``names.MIDI_INPUT_TOPIC`` for every event the
 :class:`pirate.panel.virtual.VirtualPanel` produces, lights its buttons from
 MidiOutput on ``names.MIDI_OUTPUT_TOPIC``, and shows the PAB state from the
 Pirate Server's action feedback and result (``/pirate/feedback``,
-``/pirate/result``); when no server runs it simply shows no PAB news.
+``/pirate/result``; when no server runs it simply shows no PAB news) and
+the panel's messages to the operator (refusals, results) from
+``names.OPERATOR_TOPIC``.
 
 Private params: ``~fps`` (redraw rate, default 30), ``~screenshot`` (path:
 save the window there once after the first LED arrives or after 2 s, for
@@ -18,6 +20,7 @@ import rospy
 
 from pirate import names
 from pirate.msg import MidiInput, MidiOutput, PirateActionFeedback, PirateActionResult
+from std_msgs.msg import String
 from pirate.panel import virtual
 
 #: actionlib_msgs/GoalStatus codes -> words for the operator.
@@ -36,6 +39,7 @@ class VirtualPanelNode(object):
                          self._on_feedback, queue_size=10)
         rospy.Subscriber(names.PIRATE_ACTION + '/result', PirateActionResult,
                          self._on_result, queue_size=10)
+        rospy.Subscriber(names.OPERATOR_TOPIC, String, self._on_operator, queue_size=10)
         self._fps = float(rospy.get_param('~fps', 30.0))
         self._screenshot = rospy.get_param('~screenshot', '')
 
@@ -44,10 +48,12 @@ class VirtualPanelNode(object):
             self.panel.set_led(msg.button, msg.value)
 
     def _on_feedback(self, msg):
-        fb = msg.feedback
         with self._lock:
-            self.panel.pab_text = 'PAB running: %s / %s / %s %s' % (
-                fb.server_state, fb.pab_state, fb.primitive, fb.guard)
+            self.panel.pab_text = feedback_text(msg.feedback)
+
+    def _on_operator(self, msg):
+        with self._lock:
+            self.panel.operator_text = msg.data
 
     def _on_result(self, msg):
         outcome = _TERMINAL.get(msg.status.status, 'ended')
@@ -82,6 +88,17 @@ class VirtualPanelNode(object):
                 rospy.loginfo('virtual panel: screenshot saved to %s', self._screenshot)
                 self._screenshot = ''
             clock.tick(self._fps)
+
+
+def feedback_text(fb):
+    """One status line from a Pirate feedback: the primitive with its numbers, or the server state."""
+    if not fb.primitive:
+        return 'Server: %s %s' % (fb.server_state, fb.pab_state)
+    numbers = ''.join(' %s %.2f/%.2f' % row for row in zip(fb.guard_joints, fb.guard_values,
+                                                           fb.guard_thresholds))
+    timing = ' (%.1f of %.0f s)' % (fb.elapsed, fb.timeout) if fb.timeout else ''
+    return 'PAB running: %s / %s / %s%s%s' % (fb.server_state, fb.pab_state, fb.primitive,
+                                               numbers or ' ' + fb.guard, timing)
 
 
 def main():

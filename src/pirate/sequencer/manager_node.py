@@ -21,21 +21,23 @@ import threading
 import time
 
 import actionlib
+import diagnostic_updater
+import dynamic_reconfigure.server
 import rospy
 from actionlib_msgs.msg import GoalStatus
-from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
-from std_msgs.msg import Header
 
-from pirate import names
+from pirate import health, names
 from pirate.robot import commands
 from pirate.robot.writers import OneWriter
 from pirate.state.assembler import pab_blocker
 from pirate.state.feed import RobotFeed, RobotView
 from pirate.sequencer.guards import BadConfig, GuardBook
 from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, PirateGoal,
-                        PirateResult, RobotState, SetpointArray)
+                        PirateResult, PrimitiveStep, RobotState, SetpointArray)
+from pirate.cfg import SequencerConfig
+from pirate.sequencer import tuning
 from pirate.sequencer.primitives import MotionPrimitives
-from pirate.sequencer.server import ABORTED, PREEMPTED, SUCCEEDED, PirateServer
+from pirate.sequencer.server import ABORTED, PREEMPTED, SUCCEEDED, Feedback, PirateServer
 from pirate.srv import ServerStatus, ServerStatusResponse
 
 SHUTDOWN_FLUSH_S = 0.3
@@ -44,28 +46,41 @@ TERMINAL = (GoalStatus.SUCCEEDED, GoalStatus.ABORTED, GoalStatus.PREEMPTED, Goal
 
 
 class PabClient(object):
-    """The Mapper's handle on the Pirate Server (report 4.6: it is the client)."""
+    """The Mapper's handle on the Pirate Server (report 4.6: it is the client).
 
-    def __init__(self, server):
+    Every goal gets the launch's pipe diameter. An ``actionlib.ActionClient``
+    whose callback holds its own goal handle: a SimpleActionClient logs a
+    spurious error when the fast server's status beats ``send_goal``.
+    ``on_result(success, message, refused)`` hears how each goal ended.
+    """
+
+    def __init__(self, server, pipe_diameter):
         self._server = server
-        self._client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
+        self._pipe_diameter = pipe_diameter
+        self._client = actionlib.ActionClient(names.PIRATE_ACTION, PirateAction)
+        self._handle = None     # keeps the goal's handle alive (actionlib tracks it weakly)
+        self.on_result = lambda success, message, refused: None
 
-    def send_goal(self, name_code, pipe_diameter, option=PirateGoal.NONE):
-        """Send a goal; (False, reason) when the server would refuse it."""
-        goal = PirateGoal(name=name_code, pipe_diameter=pipe_diameter, option=option)
+    def send_goal(self, goal):
+        """Send a :data:`pirate.panel.config.Goal`; (False, reason) when the server would refuse it."""
         if self._server.active:
             return False, 'a PAB is running (%s)' % self._server.active
-        self._client.send_goal(goal, done_cb=self._done)
+        self._handle = self._client.send_goal(
+            PirateGoal(name=goal.name, pipe_diameter=self._pipe_diameter, distance=goal.distance,
+                       speed=goal.speed, option=goal.option), transition_cb=self._transition)
         return True, ''
 
-    @staticmethod
-    def _done(status, result):
-        rospy.loginfo('PAB ended: %s', result.message if result else 'no result')
+    def _transition(self, handle):
+        if handle.get_comm_state() != actionlib.CommState.DONE:
+            return
+        result = handle.get_result()
+        status = handle.get_goal_status()
+        self.on_result(status == GoalStatus.SUCCEEDED, result.message if result else 'no result',
+                       status == GoalStatus.REJECTED)
 
     def cancel(self):
-        """Cancel the running goal (this client's own; a cancel-all would also
-        poke actionlib's goal-less cancel records and log errors, issue 14.8)."""
-        self._client.cancel_goal()
+        """Cancel the running goal, whoever sent it (the server's cancel; no
+        actionlib cancel-all, which would log errors for goal-less records, issue 14.8)."""
         self._server.cancel()
 
     def is_active(self):
@@ -91,8 +106,13 @@ class PirateManager(object):
         self.feed = RobotFeed(book.common['feedback_timeout'], wall_factor=book.common['wall_timeout_factor'])
         self.setpoint.measured = self._measured_angles   # Play holds position joints where they are
         self.prims = MotionPrimitives(self.setpoint, self.control, self.limit, self.feed)
+        self._efforts = {}
         self.server = PirateServer(self.prims, self.feed, book, self._start_robot,
-                                   feedback=self._publish_feedback, log=rospy.loginfo)
+                                   feedback=self._publish_feedback, log=rospy.loginfo,
+                                   efforts=lambda: self._efforts,
+                                   pipe_diameter=int(rospy.get_param('~pipe_diameter', 90)),
+                                   authority=self._panel_refusal)
+        self._progress_at = 0.0
         self._goal_lock = threading.Lock()
         self._closing = threading.Event()
         self._current = None
@@ -103,12 +123,13 @@ class PirateManager(object):
         rospy.Service(names.SERVER_STATUS_SERVICE, ServerStatus, self._status)
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state, queue_size=5)
         self._writers = OneWriter(rospy.get_name())
-        self._diagnostics = rospy.Publisher('/diagnostics', DiagnosticArray, queue_size=10)
+        self._diagnostics = self._diagnose()
         for topic, kind in ((names.SETPOINT_TOPIC, SetpointArray), (names.CONTROL_TOPIC, ControlArray),
                             (names.LIMITS_TOPIC, LimitArray)):
             rospy.Subscriber(topic, kind, self._on_command, topic, queue_size=10)
         rospy.Timer(rospy.Duration(0.1), self._tick)
         self.panel = self._compose_panel()
+        self._reconfigure = self._tunables()
         threading.Thread(target=self._worker, name='pab_worker', daemon=True).start()
         self._action.start()
         rospy.loginfo('pirate_manager ready: guards for %s mm; nothing moves until Play or a PAB goal',
@@ -118,8 +139,44 @@ class PirateManager(object):
         if not rospy.get_param('~panel', True):
             return None
         from pirate.panel.mapper_ros import MapperRos
-        return MapperRos(self.setpoint, self.control, self.limit, PabClient(self.server),
-                         publish_arrays=False)
+        client = PabClient(self.server, self.server.pipe_diameter)
+        panel = MapperRos(self.setpoint, self.control, self.limit, client, publish_arrays=False)
+        client.on_result = panel.mapper.pab_result
+        return panel
+
+    def _panel_refusal(self):
+        """The panel's veto on goals (stopped), or None without a panel."""
+        panel = getattr(self, 'panel', None)
+        return panel.mapper.goal_refusal() if panel is not None else None
+
+    def _diagnose(self):
+        """diagnostic_updater: the Pirate Server and the freshness of the robot state, 1 Hz."""
+        updater = diagnostic_updater.Updater()
+        updater.setHardwareID('pirate')
+        updater.add('Pirate Server', lambda stat: health.fill(stat, health.server(
+            self.server.status(), self.server.active, self.server.primitive, self.server.cancelled,
+            self.server.pipe_diameter)))
+        updater.add('robot state', lambda stat: health.fill(stat, health.robot_state(
+            self.feed.since_last_state(), self.feed.feedback_timeout)))
+        updater.add('command writers', lambda stat: health.fill(stat, health.command_writers(
+            self._writers.rogues(time.monotonic()), self._writers.owner)))
+        rospy.Timer(rospy.Duration(1.0), lambda _event: updater.update())
+        return updater
+
+    def _tunables(self):
+        """dynamic_reconfigure of cfg/Sequencer.cfg, starting from config/sequencer.yaml's values."""
+        for name, value in tuning.current(self.server.book.common, self.feed).items():
+            if not rospy.has_param('~' + name):
+                rospy.set_param('~' + name, value)
+        return dynamic_reconfigure.server.Server(SequencerConfig, self._on_tunables)
+
+    def _on_tunables(self, config, _level):
+        values = {name: config[name] for name in tuning.NAMES}
+        reason = self.server.tune(values)
+        if reason:
+            rospy.logwarn('tunables refused: %s', reason)
+            config.update(tuning.current(self.server.book.common, self.feed))
+        return config
 
     # --- robot side -------------------------------------------------------
     def _on_state(self, msg):
@@ -127,6 +184,7 @@ class PirateManager(object):
         if blocker:     # old angles are no feedback: the running primitive ends now
             self.feed.lose(blocker)
             return
+        self._efforts = dict(zip(msg.name, msg.effort))
         self.feed.push(RobotView(dict(zip(msg.name, msg.position)), msg.orientation,
                                  msg.odometry, msg.velocity, msg.header.stamp.to_sec()))
 
@@ -144,16 +202,14 @@ class PirateManager(object):
             self.server.cancel()
             self.prims.safe_hold()
             self.control.command('stop')
-            status = DiagnosticStatus(level=DiagnosticStatus.ERROR, name='pirate_manager: command writers',
-                                      message=report, hardware_id='pirate',
-                                      values=[KeyValue(key=topic, value=sender)])
-            self._diagnostics.publish(DiagnosticArray(header=Header(stamp=rospy.Time.now()), status=[status]))
+            self._diagnostics.force_update()     # the ERROR on /diagnostics now, not at the next 1 Hz
 
     def _tick(self, _event):
         if self._closing.is_set():
             return      # shutting down: the safe hold is the last array sent
         self.setpoint.tick()
         self.limit.tick()
+        self._publish_progress()
 
     def _start_robot(self):
         """A goal is a request to move: PLAY and start the 10 Hz arrays."""
@@ -196,7 +252,7 @@ class PirateManager(object):
                         return
                 handle = self._queue.pop(0)
             outcome = self.server.run(handle.get_goal())
-            result = PirateResult(success=outcome.status == SUCCEEDED, message=outcome.message)
+            result = self._result(outcome)
             if outcome.status == SUCCEEDED:
                 handle.set_succeeded(result, outcome.message)
             elif outcome.status == PREEMPTED:
@@ -208,15 +264,35 @@ class PirateManager(object):
                 if self._current is handle:
                     self._current = None     # only now: the handle is terminal
 
-    def _publish_feedback(self, fb):
+    def _result(self, outcome):
+        """The result: success, message, the trace of primitives, the state after."""
+        steps = [PrimitiveStep(name=s.name, guard=s.guard, start=s.start, end=s.end, outcome=s.outcome)
+                 for s in self.server.trace.steps]
+        return PirateResult(success=outcome.status == SUCCEEDED, message=outcome.message,
+                            primitives=steps, server_state=self.server.status())
+
+    def _publish_feedback(self, fb, progress=None):
         handle = self._current
         if handle is not None and not rospy.is_shutdown():
-            handle.publish_feedback(PirateFeedback(server_state=fb.server_state, pab_state=fb.pab_state,
-                                                   primitive=fb.primitive, guard=fb.guard))
+            msg = PirateFeedback(server_state=fb.server_state, pab_state=fb.pab_state,
+                                 primitive=fb.primitive, guard=fb.guard)
+            if progress is not None:
+                msg.elapsed, msg.timeout = progress.elapsed, progress.timeout
+                msg.guard_joints, msg.guard_values, msg.guard_thresholds = progress.guard
+            handle.publish_feedback(msg)
+
+    def _publish_progress(self):
+        """Feedback with numbers (time against timeout, guard against threshold), 2 Hz robot time."""
+        progress = self.server.progress()
+        if progress is None or abs(progress.elapsed - self._progress_at) < 0.5:
+            return
+        self._progress_at = progress.elapsed
+        self._publish_feedback(Feedback(self.server.status(), self.server.pab_state,
+                                        progress.primitive, progress.guard_text), progress)
 
     def _status(self, _req):
         return ServerStatusResponse(active=bool(self.server.active), cancelled=self.server.cancelled,
-                                    server_state=self.server.state, pab_state=self.server.pab_state,
+                                    server_state=self.server.status(), pab_state=self.server.pab_state,
                                     primitive=self.server.primitive, robot_connected=self.feed.fresh())
 
     # --- shutdown ---------------------------------------------------------

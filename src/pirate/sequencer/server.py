@@ -2,14 +2,19 @@
 
 Pure Python; :mod:`pirate.sequencer.manager_node` wires it to an actionlib
 ActionServer. Rules:
+- while the operator panel is stopped (``authority``) every goal, from any
+  client, is refused with that reason;
 - a goal it cannot do is refused at once with the reason (unknown or
   unbuilt PAB, no guards for the diameter, out-of-range drive, robot not
   clamped for Drive, no robot state, another goal running — never queued);
 - :meth:`run` has one exit path: whatever ends the PAB (success, cancel,
   timeout, lost feedback, a refused primitive, a bug) it returns exactly one
   outcome, and every outcome but success leaves the robot in the safe hold;
-- the server's own state follows Fig 4.2: Idle Unclamped, Idle Clamped, or
-  the running PAB.
+- the server's own state follows Fig 4.2: the running PAB, or, when idle,
+  Idle Clamped / Idle Unclamped / Idle Partly Clamped as the robot senses
+  it (:mod:`pirate.sequencer.clamp_state`), whatever ended the last goal;
+- every primitive a goal runs is kept in :attr:`trace` (robot times and
+  outcome) for the result, because feedback may be lost on the way.
 """
 import collections
 import threading
@@ -17,17 +22,22 @@ import traceback
 
 from pirate.state import feed as feeds
 from pirate.robot import safety
+from pirate.sequencer import clamp_state, tuning
 from pirate.sequencer.guards import NoGuards
 from pirate.sequencer.pabs import PABS
 from pirate.sequencer.pabs.base import PabFailed
 from pirate.sequencer.primitives import Refused
+from pirate.sequencer.trace import REACHED, Trace, guard_numbers
 
-IDLE_UNCLAMPED = 'Idle Unclamped'
-IDLE_CLAMPED = 'Idle Clamped'
+IDLE_UNCLAMPED = clamp_state.IDLE_UNCLAMPED
+IDLE_CLAMPED = clamp_state.IDLE_CLAMPED
 SUCCEEDED, ABORTED, PREEMPTED = 'succeeded', 'aborted', 'preempted'
 
 Outcome = collections.namedtuple('Outcome', 'status message')
 Feedback = collections.namedtuple('Feedback', 'server_state pab_state primitive guard')
+#: The numbers of a running primitive: robot time since it started against
+#: its timeout (s), and its guard's joints, values and thresholds (rad).
+Progress = collections.namedtuple('Progress', 'primitive guard_text elapsed timeout guard')
 
 
 class PabContext(object):
@@ -49,7 +59,8 @@ def robot_clamped(view, guards):
 class PirateServer(object):
     """Goal checking, PAB execution and the server state machine."""
 
-    def __init__(self, prims, feed, book, start_robot, feedback=None, log=None):
+    def __init__(self, prims, feed, book, start_robot, feedback=None, log=None, efforts=None,
+                 pipe_diameter=90, authority=None):
         self.prims = prims
         self.feed = feed
         self.book = book
@@ -57,17 +68,23 @@ class PirateServer(object):
         self._feedback = feedback or (lambda fb: None)
         self._log = log or (lambda text: None)
         self._lock = threading.Lock()
-        self.state = IDLE_UNCLAMPED
+        self._efforts = efforts or dict     # newest bend efforts, mNm (the springs)
+        self._authority = authority or (lambda: None)   # the panel: a reason no goal may move
+        self.pipe_diameter = pipe_diameter  # mm, of the last goal: the idle state's guards
+        self.state = None           # the running PAB; None when idle (see :meth:`status`)
         self.active = None          # name of the running PAB
         self.pab_state = ''
         self.primitive = ''
+        self.trace = Trace()
+        self._guards = None
+        self._tuning = None         # tunables waiting for the running goal to end
         prims.notify = self._on_primitive
 
     # --- accepting --------------------------------------------------------
     def reserve(self, goal):
         """Check ``goal`` and, if it can run, mark it running. Return a reason or None."""
         with self._lock:
-            reason = self._check(goal)
+            reason = self._authority() or self._check(goal)
             if reason is None:
                 self.active = PABS[goal.name][0]
                 self.feed.clear_cancel()
@@ -112,6 +129,7 @@ class PirateServer(object):
         pab = pab_class()
         self.prims.use(guards)
         self.state = pab.name
+        self.pipe_diameter, self._guards, self.trace = goal.pipe_diameter, guards, Trace()
         outcome = Outcome(ABORTED, '%s did not start' % pab.name)
         try:
             self._start_robot()
@@ -127,20 +145,62 @@ class PirateServer(object):
         finally:
             if outcome.status != SUCCEEDED:
                 self.prims.safe_hold()
-            self._finish(pab, guards, outcome)
+            self.trace.end(self._robot_now(), outcome.status)
+            self._finish(outcome)
         return outcome
 
-    def _finish(self, pab, guards, outcome):
-        view = self.feed.latest()
-        if outcome.status == SUCCEEDED:
-            self.state = IDLE_CLAMPED if pab.leaves == 'clamped' else IDLE_UNCLAMPED
-        else:
-            self.state = IDLE_CLAMPED if view is not None and robot_clamped(view, guards) else IDLE_UNCLAMPED
+    def tune(self, values):
+        """New tunables (dynamic_reconfigure): applied now when idle, else after this goal.
+
+        Returns the reason they were refused, or None.
+        """
+        with self._lock:
+            reason = tuning.problem(values, self.book.common)
+            if reason is None:
+                self._tuning = dict(values)
+                if not self.active:
+                    self._apply_tuning()
+            return reason
+
+    def _apply_tuning(self):
+        if self._tuning is not None:
+            tuning.apply(self._tuning, self.book.common, self.feed)
+            self._log('tunables applied: %s' % ', '.join('%s %g' % kv for kv in sorted(self._tuning.items())))
+            self._tuning = None
+
+    def _finish(self, outcome):
         self._log(outcome.message)
         with self._lock:
-            self.active = None
+            self.active = self.state = None
             self.pab_state = self.primitive = ''
-        self._feedback(Feedback(self.state, '', '', ''))
+            self._apply_tuning()
+        self._feedback(Feedback(self.status(), '', '', ''))
+
+    def status(self):
+        """The server state: the running PAB, else the idle state the robot senses."""
+        running = self.state
+        if running:
+            return running
+        view = self.feed.latest()
+        if view is None:
+            return 'Idle (no robot state)'
+        try:
+            guards = self.book.for_diameter(self.pipe_diameter)
+        except NoGuards as missing:
+            return 'Idle (%s)' % missing
+        return clamp_state.idle_state(clamp_state.classify(guards, view.angles, self._efforts()))
+
+    def progress(self):
+        """:data:`Progress` of the running primitive, or None when none runs."""
+        step, view, guards = self.trace.running, self.feed.latest(), self._guards
+        if step is None or view is None or guards is None or not self.active:
+            return None
+        return Progress(step.name, step.guard, view.stamp - step.start, guards.primitive_timeout,
+                        guard_numbers(step.guard, view.angles))
+
+    def _robot_now(self):
+        view = self.feed.latest()
+        return view.stamp if view is not None else 0.0
 
     def _report(self, pab_state, guard=''):
         self.pab_state = pab_state
@@ -148,4 +208,8 @@ class PirateServer(object):
 
     def _on_primitive(self, primitive, guard):
         self.primitive = primitive
+        if primitive:
+            self.trace.start(primitive, guard, self._robot_now())
+        else:
+            self.trace.end(self._robot_now(), REACHED)
         self._feedback(Feedback(self.state, self.pab_state, primitive, guard))

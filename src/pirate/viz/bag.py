@@ -1,22 +1,31 @@
 """Read a run's rosbag (launch/record.launch) into a pirate.viz.plot.Run.
 
-The thin layer between rosbag and the plot: joint angles, efforts and the
-orientation from /pirate/state, the primitive markers from the Pirate
-Server's feedback, the pipe diameter from its goals. Times are the bag's
-record times (sim time when the run used /clock), in s from the first
-recorded state or feedback, whichever came first: a recorder that connects
+The thin layer between rosbag and the plot: joint angles, efforts, the
+orientation, odometry and wheel speed from /pirate/state; the primitive
+markers from the trace each goal's result carries (robot times, complete
+even when feedback was lost), or from the feedback for a bag without
+results; cancels and aborts from the results; the pipe diameter and the
+title from the goals. Times are in s from the first recorded state,
+feedback or primitive start, whichever came first: a recorder that connects
 just before a goal can log the first primitive before the first state, and
 that marker still belongs on the plot at t >= 0.
 """
+import os
+
 import rosbag
 
 from pirate import names
+from pirate.sequencer.goals import CODES
 from pirate.viz import plot
 
 FEEDBACK_TOPIC = names.PIRATE_ACTION + '/feedback'
 GOAL_TOPIC = names.PIRATE_ACTION + '/goal'
+RESULT_TOPIC = names.PIRATE_ACTION + '/result'
 #: What rosbag raises for a file that is not a readable bag.
 BagError = rosbag.ROSBagException
+#: actionlib_msgs/GoalStatus codes of the ends the plot marks.
+MARKED_ENDS = {2: 'cancelled', 4: 'aborted'}
+PAB_NAMES = {code: name for name, code in CODES.items()}
 
 
 def read_run(path):
@@ -24,19 +33,23 @@ def read_run(path):
 
     Raises ValueError when the bag holds no robot state to plot.
     """
-    states, feedback, diameters = [], [], []
+    states, feedback, goals, results = [], [], [], []
     with rosbag.Bag(path) as bag:
-        topics = [names.ROBOT_STATE_TOPIC, FEEDBACK_TOPIC, GOAL_TOPIC]
+        topics = [names.ROBOT_STATE_TOPIC, FEEDBACK_TOPIC, GOAL_TOPIC, RESULT_TOPIC]
         for topic, msg, t in bag.read_messages(topics=topics):
             if topic == names.ROBOT_STATE_TOPIC:
                 states.append((t.to_sec(), msg))
             elif topic == FEEDBACK_TOPIC:
                 feedback.append((t.to_sec(), msg.status.goal_id.id, msg.feedback.primitive))
-            elif msg.goal.pipe_diameter:
-                diameters.append(msg.goal.pipe_diameter)
+            elif topic == RESULT_TOPIC:
+                results.append((t.to_sec(), msg))
+            else:
+                goals.append((t.to_sec(), msg.goal))
     if not states:
         raise ValueError('%s holds no %s messages to plot' % (path, names.ROBOT_STATE_TOPIC))
-    t0 = min(states[0][0], feedback[0][0]) if feedback else states[0][0]
+    traced = [(p.start, p.name) for _, msg in results for p in msg.result.primitives]
+    found = traced if traced else [(t, p) for t, p in plot.transitions(feedback)]
+    t0 = min([states[0][0]] + [t for t, _ in found])
     joints = list(states[0][1].name)
     positions = {j: [] for j in joints}
     efforts = {j: [] for j in joints}
@@ -46,7 +59,29 @@ def read_run(path):
             position, effort = by_name.get(j, (float('nan'), float('nan')))
             positions[j].append(position)
             efforts[j].append(effort)
+    events = [(t - t0, '%s: %s' % (MARKED_ENDS[msg.status.status], msg.result.message))
+              for t, msg in results if msg.status.status in MARKED_ENDS]
     run = plot.Run(times=[t - t0 for t, _ in states], positions=positions, efforts=efforts,
                    orientation=[msg.orientation for _, msg in states],
-                   markers=[(t - t0, p) for t, p in plot.transitions(feedback)])
-    return run, diameters
+                   markers=[(t - t0, p) for t, p in found],
+                   odometry=[msg.odometry - states[0][1].odometry for _, msg in states],
+                   velocity=[msg.velocity for _, msg in states],
+                   events=events, title=run_title(goals, results, path))
+    return run, [g.pipe_diameter for _, g in goals if g.pipe_diameter]
+
+
+def run_title(goals, results, path):
+    """What ran: the goals' PABs (with drive distances), the pipe, how it ended, the bag."""
+    steps = []
+    for _, goal in goals:
+        name = PAB_NAMES.get(goal.name, 'PAB %d' % goal.name).replace('_', ' ').title()
+        steps.append('%s %+.0f mm' % (name, goal.distance) if goal.distance else name)
+    pipes = sorted({g.pipe_diameter for _, g in goals if g.pipe_diameter})
+    ends = [MARKED_ENDS.get(msg.status.status) for _, msg in results]
+    parts = [', '.join(steps) or 'no goal recorded']
+    if pipes:
+        parts.append('/'.join(str(p) for p in pipes) + ' mm pipe')
+    if any(ends):
+        parts.append(', '.join(sorted({e for e in ends if e})))
+    parts.append(os.path.basename(path))
+    return ' - '.join(parts)

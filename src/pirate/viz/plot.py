@@ -11,6 +11,12 @@ holds both, five panels sharing the time axis:
    [1.52, 1.62] rad (Table 5.4) and pi/2 dotted, as the report's pink line
 4. Bend III and Bend IV (26, 27)
 5. bend efforts, mNm
+6. the drive: odometry (mm) and wheel speed (mm/s), when the run has them
+
+Cancels and aborts are red dashed lines named in the key; the tN labels
+are stacked on as many rows as it takes for none to overlap
+(:func:`label_rows`); the title says what ran (pirate.viz.bag builds it
+from the run's goals).
 
 Everything takes plain data (lists of times and values, a list of
 (t, primitive) markers), so tests can check what was drawn without a bag;
@@ -33,8 +39,13 @@ UPRIGHT = math.pi / 2
 
 #: A run: ``times`` s from the run's start; ``positions`` and ``efforts``
 #: map joint names to lists as long as ``times`` (rad, mNm); ``orientation``
-#: rad (Fig 4.7), as long as ``times``; ``markers`` [(t s, primitive)].
-Run = collections.namedtuple('Run', 'times positions efforts orientation markers')
+#: rad (Fig 4.7), as long as ``times``; ``markers`` [(t s, primitive)];
+#: ``odometry`` mm and ``velocity`` mm/s as long as ``times`` (or empty);
+#: ``events`` [(t s, 'cancelled ...' / 'aborted ...')]; ``title`` text.
+Run = collections.namedtuple('Run', 'times positions efforts orientation markers odometry velocity '
+                                    'events title', defaults=((), (), (), ''))
+#: Label width used to keep tN labels apart, as a fraction of the time axis.
+LABEL_GAP = 0.035
 
 #: One panel: title, y label, [(label, times, values)], guard lines
 #: [(label, value)], bands [(low, high)], reference lines [(label, value)].
@@ -144,19 +155,46 @@ def panels(run, guards=None):
     efforts = [(LABELS[j], list(run.times), list(run.efforts[j]))
                for j in EFFORT_JOINTS if j in run.efforts]
     drawn.append(Panel('Bend efforts', 'effort [mNm]', efforts, [], [], []))
+    drive = [(label, list(run.times), list(values)) for label, values in
+             (('Odometry [mm]', run.odometry), ('Wheel speed [mm/s]', run.velocity)) if len(values)]
+    for label, _, values in drive:
+        if len(values) != n:
+            raise ValueError('%s has %d samples for %d times' % (label, len(values), n))
+    if drive:
+        drawn.append(Panel('Drive: odometry and wheel speed', 'mm, mm/s', drive, [], [], []))
     return drawn
+
+
+def label_rows(times, span, gap=LABEL_GAP):
+    """Row (0, 1, ...) of each tN label so that no two on a row are closer than ``gap * span``.
+
+    Greedy, left to right: each label takes the lowest row whose last label
+    is far enough; a burst of transitions stacks up instead of overlapping.
+    """
+    last, rows = [], []
+    width = gap * (span or 1.0)
+    for t in times:
+        row = next((r for r, x in enumerate(last) if t - x >= width), len(last))
+        if row == len(last):
+            last.append(t)
+        last[row] = t
+        rows.append(row)
+    return rows
 
 
 KEY_COLUMNS = 3   # columns of the "tN  time  primitive" key under the plots
 
 
-def render(drawn, markers, path, title=None):
-    """Draw ``drawn`` panels and the primitive ``markers`` to a PNG at ``path``.
+def render(drawn, markers, path, title=None, events=()):
+    """Draw ``drawn`` panels, the primitive ``markers`` and ``events`` to a PNG at ``path``.
 
     As in the report, each transition is a vertical line labelled tN; the
     key under the panels names the primitive of each tN (Tables 6.1-6.4).
+    Events (cancel, abort) are red dashed lines, named in the key too.
     """
-    key_rows = max(1, math.ceil(len(markers) / KEY_COLUMNS))
+    entries = [('t%d' % i, t, primitive) for i, (t, primitive) in enumerate(markers, 1)]
+    entries += [('!', t, text) for t, text in events]
+    key_rows = max(1, math.ceil(len(entries) / KEY_COLUMNS))
     fig = plt.figure(figsize=(12, 2.1 * len(drawn) + 1.5 + 0.2 * key_rows))
     grid = fig.add_gridspec(len(drawn) + 1, 1,
                             height_ratios=[2.1] * len(drawn) + [0.2 * key_rows + 0.3])
@@ -176,6 +214,8 @@ def render(drawn, markers, path, title=None):
                         fontsize=6, color='dimgrey', ha='right', va='bottom')
         for t, _ in markers:
             ax.axvline(t, color='black', linestyle='-', linewidth=0.6, alpha=0.5)
+        for t, _ in events:
+            ax.axvline(t, color='red', linestyle='--', linewidth=1.2)
         ax.set_title(panel.title, fontsize=9, loc='right')
         ax.set_ylabel(panel.ylabel, fontsize=8)
         ax.grid(True, alpha=0.3)
@@ -183,18 +223,19 @@ def render(drawn, markers, path, title=None):
             ax.legend(fontsize=7, loc='upper left', bbox_to_anchor=(1.01, 1.0))
         if row < len(drawn) - 1:
             ax.tick_params(labelbottom=False)
-    for i, (t, _) in enumerate(markers, 1):
-        # Two label heights, so neighbouring transitions stay readable.
-        axes[0].annotate('t%d' % i, (t, 1.02 + 0.1 * (i % 2)),
-                         xycoords=('data', 'axes fraction'), fontsize=7, ha='center')
+    times = [t for _, t, _ in entries]
+    span = (max(times) - min(times)) if times else 1.0
+    for (label, t, _), row in zip(entries, label_rows(times, span)):
+        axes[0].annotate(label, (t, 1.02 + 0.1 * row), xycoords=('data', 'axes fraction'),
+                         fontsize=7, ha='center', color='red' if label == '!' else 'black')
     axes[-1].set_xlabel('time [s]')
     key = fig.add_subplot(grid[len(drawn)])
     key.axis('off')
-    for i, (t, primitive) in enumerate(markers):
+    for i, (label, t, text) in enumerate(entries):
         column, row = divmod(i, key_rows)
         key.text(column / KEY_COLUMNS, 1.0 - (row + 0.5) / key_rows,
-                 't%d  %6.2f s  %s' % (i + 1, t, primitive), fontsize=8, va='center',
-                 family='monospace', transform=key.transAxes)
+                 '%-3s %6.2f s  %s' % (label, t, text), fontsize=8, va='center',
+                 family='monospace', transform=key.transAxes, color='red' if label == '!' else 'black')
     if title:
         fig.suptitle(title, fontsize=10)
     fig.tight_layout()
@@ -203,7 +244,7 @@ def render(drawn, markers, path, title=None):
 
 
 def plot_run(run, path, guards=None, title=None):
-    """Plot ``run`` to ``path``; return (panels, markers) as drawn."""
+    """Plot ``run`` to ``path`` (title: ``title``, else the run's); return (panels, markers)."""
     drawn = panels(run, guards)
-    render(drawn, run.markers, path, title)
+    render(drawn, run.markers, path, title or run.title or None, run.events)
     return drawn, list(run.markers)

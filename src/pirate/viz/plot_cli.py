@@ -45,7 +45,7 @@ def plot_bag(bag_path, output, guards=None, title=None):
     run, diameters = bag.read_run(bag_path)
     config, config_path = _guard_config(guards, diameters)
     lines = plot.guard_lines(config, [p for _, p in run.markers])
-    drawn, _ = plot.plot_run(run, output, lines, title or os.path.basename(bag_path))
+    drawn, _ = plot.plot_run(run, output, lines, title)
     return run, drawn, config_path
 
 
@@ -54,7 +54,7 @@ def main(argv=None):
     parser.add_argument('bag', help='rosbag recorded by launch/record.launch')
     parser.add_argument('-o', '--output', help='PNG to write (default: the bag with .png)')
     parser.add_argument('--guards', help='guard config YAML (default: by the goal\'s pipe)')
-    parser.add_argument('--title', help='figure title (default: the bag\'s name)')
+    parser.add_argument('--title', help='figure title (default: what ran, the pipe, how it ended, the bag)')
     args = parser.parse_args(argv)
     output = args.output or os.path.splitext(args.bag)[0] + '.png'
     try:

@@ -1,0 +1,48 @@
+"""What the diagnostics say (pirate.health), without ROS."""
+import math
+
+from pirate import health
+
+
+class Stat(object):
+    """The part of diagnostic_updater's DiagnosticStatusWrapper that fill uses."""
+
+    def __init__(self):
+        self.level, self.message, self.values = None, None, {}
+
+    def summary(self, level, message):
+        self.level, self.message = level, message
+
+    def add(self, key, value):
+        self.values[key] = value
+
+
+def test_robot_state_freshness():
+    assert health.robot_state(0.05, 0.3).level == health.OK
+    stale = health.robot_state(0.5, 0.3)
+    assert stale.level == health.ERROR and 'refused' in stale.message
+    assert health.robot_state(math.inf, 0.3).level == health.ERROR
+
+
+def test_server_reports_its_state_and_running_primitive():
+    idle = health.server('Idle Clamped', None, '', False, 90)
+    assert idle.level == health.OK and idle.message == 'Idle Clamped'
+    running = health.server('Clamp Straight', 'CLAMP_STRAIGHT', 'clamp rear', False, 110)
+    assert 'clamp rear' in running.message and ('pipe_diameter_mm', 110) in running.values
+    assert health.server('Idle (no robot state)', None, '', False, 90).level == health.WARN
+
+
+def test_panel_device_and_fill():
+    stat = health.fill(Stat(), health.panel_device(False, 'nanoKONTROL2', ''))
+    assert stat.level == health.ERROR and 'not connected' in stat.message
+    assert stat.values['device asked'] == 'nanoKONTROL2'
+    assert health.panel_device(True, '', 'nanoKONTROL2 MIDI 1').level == health.OK
+
+
+def test_command_writers_name_the_rogue_as_an_error_and_are_ok_alone():
+    alone = health.command_writers([], '/pirate_manager')
+    assert alone.level == health.OK and '/pirate_manager' in alone.message
+    rogue = health.command_writers([('/pirate/setpoint_array', '/rostopic_1')], '/pirate_manager')
+    assert rogue.level == health.ERROR
+    assert '/rostopic_1 on /pirate/setpoint_array' in rogue.message
+    assert ('/pirate/setpoint_array', '/rostopic_1') in rogue.values
