@@ -55,7 +55,7 @@ def test_mitre_left_clamps_sideways_left_and_stops_the_front_before_it():
         ('CLAMP_SIDEWAYS', 'LEFT'), ('DRIVE', None), ('MITRE_BEND', 'LEFT'), ('DRIVE', None), ('HOME', None)]
     entry_mm, exit_mm = 2000, 2090
     assert steps[1].distance_mm == pytest.approx(entry_mm - FRONT - APPROACH - 300)
-    assert steps[2].distance_mm == SEARCH and steps[2].junction == 'mitre_1'
+    assert steps[2].distance_mm == SEARCH and steps[2].junction.name == 'mitre_1'
     assert steps[2].end_m * 1000 == pytest.approx(exit_mm + CLEAR)
     assert steps[3].distance_mm == pytest.approx(3000 - exit_mm - CLEAR)
     assert all(s.speed_mm_s == 60 for s in steps[:4])

@@ -26,8 +26,12 @@ from pirate.sequencer.junctions import STRAIGHT_CLAMP, required_clamp
 #: One junction of the map, as the route meets it.
 Junction = collections.namedtuple('Junction', 'name kind direction open_side entry_m exit_m diameter_mm')
 #: One PAB goal of the plan. ``option``: None or LEFT/RIGHT/UP/DOWN/STRAIGHT;
-#: ``distance_mm`` signed (Drive: how far; junction PABs: how far to search).
-Step = collections.namedtuple('Step', 'pab option distance_mm speed_mm_s pipe_diameter start_m end_m junction note')
+#: ``distance_mm`` signed (Drive: how far; junction PABs: how far to search);
+#: ``junction``: the :data:`Junction` a junction PAB should meet (else None);
+#: ``holds``: the clamp the robot holds when the step starts (None: none yet),
+#: which a retry or a resume re-establishes first.
+Step = collections.namedtuple('Step', 'pab option distance_mm speed_mm_s pipe_diameter start_m end_m '
+                                      'junction note holds')
 Plan = collections.namedtuple('Plan', 'map_name waypoints steps')
 
 
@@ -96,7 +100,7 @@ class _Planner(object):
     def add(self, pab, option, distance_mm, start_m, end_m, junction, note):
         diameter = round(self.network.diameter_at(start_m) * 1000)
         self.steps.append(Step(pab, option, distance_mm, self.speed if pab != 'HOME' else 0.0,
-                               diameter, start_m, end_m, junction, note))
+                               diameter, start_m, end_m, junction, note, self.clamp))
 
     def leg(self, name_a, a, name_b, b):
         """Steps from ``a`` to ``b`` (metres along), through the junctions between."""
@@ -130,7 +134,7 @@ class _Planner(object):
         after_m = (junction.exit_m if sign > 0 else junction.entry_m) + sign * self.settings['clear_mm'] / 1000.0
         pab = 'MITRE_BEND' if junction.kind == 'mitre' else 'T_JOINT'
         self.add(pab, junction.direction.upper(), sign * self.settings['search_mm'], self.at, after_m,
-                 junction.name, '%s %s%s' % (junction.name, junction.direction, '' if sign > 0 else ', rear first'))
+                 junction, '%s %s%s' % (junction.name, junction.direction, '' if sign > 0 else ', rear first'))
         self.at, self.clamp = after_m, STRAIGHT_CLAMP
 
     def _check_takeable(self, junction):
