@@ -224,3 +224,25 @@ def test_progress_counts_steps_and_time_left_goes_down():
 def test_a_bad_level_is_refused():
     with pytest.raises(ValueError, match='autonomy level'):
         mission(FakeRobot(0.3), level='auto')
+
+
+@pytest.mark.parametrize('text, ok, level', [
+    ('level confirm', True, ex.CONFIRM), ('LEVEL manual', True, ex.MANUAL), ('level auto', False, ex.FULL),
+    ('jump', False, ex.FULL), ('', False, ex.FULL)])
+def test_operator_words_change_the_level_or_are_refused_with_the_reason(text, ok, level):
+    run = mission(FakeRobot(0.3))
+    answer = run.command(text)
+    assert answer[0] is ok and run.level == level
+    assert ok or ('unknown command' in answer[1] or 'autonomy level' in answer[1])
+
+
+def test_pause_word_before_the_first_step_holds_the_mission_until_resume():
+    robot, waiter = FakeRobot(0.3), Waiter()
+    run = mission(robot, progress=waiter)
+    assert run.command('pause')[0]
+    thread, result = _in_thread(run)
+    waiter.wait_for(lambda p: p.waiting_for.startswith('resume'))
+    assert robot.goals == []
+    assert run.command('resume')[0]
+    thread.join(WAIT_S)
+    assert result['outcome'].status == 'succeeded'

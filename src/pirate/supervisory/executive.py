@@ -110,6 +110,22 @@ class Executive(object):
             self._cond.notify_all()
         self._say('autonomy level: %s' % level)
 
+    def command(self, text):
+        """The operator's word as text (the MissionCommand service, the
+        panel): (ok, message); an unknown word changes nothing."""
+        words = text.strip().lower().split()
+        simple = {'pause': self.pause, 'resume': self.resume, 'confirm': self.confirm, 'cancel': self.cancel}
+        if len(words) == 1 and words[0] in simple:
+            simple[words[0]]()
+            return True, '%s: done (step %d, %s)' % (words[0], self.step_index + 1, self.state)
+        if len(words) == 2 and words[0] == 'level':
+            try:
+                self.set_level(words[1])
+            except ValueError as refused:
+                return False, str(refused)
+            return True, 'autonomy level %s from the next step' % words[1]
+        return False, 'unknown command %r (pause, resume, confirm, cancel, level full|confirm|manual)' % text
+
     # --- the mission thread -----------------------------------------------
     def run(self):
         """Run the plan to its :data:`Outcome`."""

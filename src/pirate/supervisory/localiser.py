@@ -37,8 +37,15 @@ class Localiser(object):
         """A new odometry reading: the estimate follows it from the anchor."""
         if self.anchor_odometry is None:
             self.anchor_odometry = odometry_mm
-        self.along_m = self.anchor_m + (odometry_mm - self.anchor_odometry) / 1000.0
+        self.along_m = self.estimate(odometry_mm)
         return self.along_m
+
+    def estimate(self, odometry_mm):
+        """Where ``odometry_mm`` puts the robot (m along), changing nothing:
+        for showing the position live between the executive's updates."""
+        if self.anchor_odometry is None:
+            return self.anchor_m
+        return self.anchor_m + (odometry_mm - self.anchor_odometry) / 1000.0
 
     def junction_found(self, junction, odometry_mm, sign):
         """A junction PAB detected ``junction`` (its leading end lost the wall)
