@@ -22,3 +22,8 @@ PIRATE_ACTION = '/pirate'                     # pirate/PirateAction
 #: module, pirate.sim.twin.TRUTH_BODIES order): tests, bench and RViz only,
 #: never a PAB (the real robot has no such topic).
 GROUND_TRUTH_TOPIC = '/pirate/sim/ground_truth'
+MISSION_ACTION = '/pirate/mission'            # pirate/MissionAction (Supervisory layer)
+MISSION_COMMAND_SERVICE = '/pirate/mission/command'   # pirate/MissionCommand: pause, resume, ...
+MISSION_POSE_TOPIC = '/pirate/mission/pose'   # geometry_msgs/PoseStamped, estimate on the map
+MISSION_ALONG_TOPIC = '/pirate/mission/along_mm'      # std_msgs/Float64, estimate along the path
+MAP_FRAME = 'map'                             # the pipe map's frame (world file origin)

@@ -1,0 +1,211 @@
+"""mission_executive: the Supervisory layer's ROS edge (issue 11).
+
+An actionlib server, ``/pirate/mission`` (pirate/MissionAction): a goal
+names a pipe map and the points to visit; the node plans the route
+(pirate.supervisory.planner), refuses it at once with the reason if the map
+cannot serve it, and otherwise runs it with the executive
+(pirate.supervisory.executive) as a client of the Pirate Server. Any client
+can start, watch (feedback: step k of n, position along the map, time left,
+what it waits for) and cancel a mission. One mission at a time.
+
+The operator's word during a mission: the ``/pirate/mission/command``
+service (pirate/MissionCommand: pause, resume, confirm, cancel,
+level full|confirm|manual), which the panel calls. The estimated position
+is published as a pose on the map (``/pirate/mission/pose``, frame ``map``)
+and as millimetres along the path (``/pirate/mission/along_mm``), 5 Hz.
+
+Params (private): ``~goal_timeout`` (s of robot time one PAB may take
+before the executive cancels it, default 600).
+"""
+import math
+import threading
+
+import actionlib
+import rospy
+import yaml
+from actionlib_msgs.msg import GoalStatus
+from geometry_msgs.msg import PoseStamped
+from std_msgs.msg import Float64
+
+from pirate import names
+from pirate.msg import MissionAction, MissionFeedback, MissionResult, PirateAction, PirateGoal, RobotState
+from pirate.srv import MissionCommand, MissionCommandResponse
+from pirate.supervisory import executive as ex
+from pirate.supervisory import planner
+from pirate.supervisory.localiser import Localiser
+from pirate.supervisory.plan_cli import load_settings, map_path
+from pirate.world import network
+from pirate.world.pose import pose_along
+
+STATUS = {GoalStatus.SUCCEEDED: 'succeeded', GoalStatus.ABORTED: 'aborted', GoalStatus.PREEMPTED: 'preempted',
+          GoalStatus.REJECTED: 'rejected', GoalStatus.RECALLED: 'rejected'}
+PAB_CODES = {'CLAMP_STRAIGHT': PirateGoal.CLAMP_STRAIGHT, 'CLAMP_SIDEWAYS': PirateGoal.CLAMP_SIDEWAYS,
+             'T_JOINT': PirateGoal.T_JOINT, 'MITRE_BEND': PirateGoal.MITRE_BEND, 'DRIVE': PirateGoal.DRIVE,
+             'HOME': PirateGoal.HOME}
+POSE_PERIOD_S = 0.2
+
+
+class ActionRobot(object):
+    """The executive's robot: one Pirate Server goal at a time over actionlib."""
+
+    def __init__(self, timeout_s):
+        self._client = actionlib.ActionClient(names.PIRATE_ACTION, PirateAction)
+        self._timeout = timeout_s
+        self._cond = threading.Condition()
+        self._handle = None
+        self.odometry_mm = None
+        rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state, queue_size=5)
+
+    def _on_state(self, msg):
+        if not msg.stale:
+            self.odometry_mm = msg.odometry
+
+    def run(self, step):
+        """Send ``step`` as a goal and wait for its end: an :data:`ex.Report`."""
+        option = getattr(PirateGoal, step.option, None) if step.option else PirateGoal.NONE
+        if option is None:
+            return ex.Report('rejected', 'option %s is not one of Pirate.action' % step.option,
+                             self.odometry_mm, None, False, False)
+        goal = PirateGoal(name=PAB_CODES[step.pab], pipe_diameter=step.pipe_diameter,
+                          distance=step.distance_mm, speed=step.speed_mm_s, option=option)
+        with self._cond:
+            self._handle = self._client.send_goal(goal, transition_cb=self._transition)
+            ended = self._cond.wait_for(self._done, self._timeout)
+            handle, self._handle = self._handle, None
+        if not ended:
+            handle.cancel()
+            return ex.Report('aborted', 'no result within %.0f s; goal cancelled' % self._timeout,
+                             self.odometry_mm, None, False, False)
+        return self._report(handle)
+
+    def _done(self):
+        return rospy.is_shutdown() or self._handle.get_comm_state() == actionlib.CommState.DONE
+
+    def _transition(self, _handle):
+        with self._cond:
+            self._cond.notify_all()
+
+    def _report(self, handle):
+        result = handle.get_result()
+        status = STATUS.get(handle.get_goal_status(), 'aborted')
+        if result is None:
+            return ex.Report(status, 'no result', self.odometry_mm, None, False, False)
+        found = getattr(result, 'junction_odometry', float('nan'))
+        return ex.Report(status, result.message, self.odometry_mm, None if math.isnan(found) else found,
+                         bool(getattr(result, 'junction_missing', False)), result.server_state == 'Idle Clamped')
+
+    def cancel(self):
+        """Cancel the running goal (any thread)."""
+        with self._cond:
+            handle = self._handle
+        if handle is not None:
+            handle.cancel()
+
+
+class MissionExecutiveNode(object):
+    """The mission action server, the command service and the pose on the map."""
+
+    def __init__(self):
+        self.settings, self.max_drive_mm = load_settings()
+        self.robot = ActionRobot(float(rospy.get_param('~goal_timeout', 600.0)))
+        self._lock = threading.Lock()
+        self._running = None            # (goal handle, executive, map)
+        self._pose_pub = rospy.Publisher(names.MISSION_POSE_TOPIC, PoseStamped, queue_size=1)
+        self._along_pub = rospy.Publisher(names.MISSION_ALONG_TOPIC, Float64, queue_size=1)
+        self._server = actionlib.ActionServer(names.MISSION_ACTION, MissionAction, self._on_goal,
+                                              self._on_cancel, auto_start=False)
+        rospy.Service(names.MISSION_COMMAND_SERVICE, MissionCommand, self._on_command)
+        rospy.Timer(rospy.Duration(POSE_PERIOD_S), self._publish_pose)
+        self._server.start()
+        rospy.loginfo('mission_executive ready on %s', names.MISSION_ACTION)
+
+    # --- goals --------------------------------------------------------------
+    def _on_goal(self, handle):
+        goal = handle.get_goal()
+        try:
+            pipe_map, route_plan, policy = self._prepare(goal)
+            run = ex.Executive(route_plan, self.robot, Localiser(pipe_map.points[goal.points[0]], self.settings),
+                               self.settings, policy=policy, level=goal.level or ex.FULL,
+                               progress=lambda p: self._feedback(handle, p), out=rospy.loginfo)
+        except (network.WorldError, planner.PlanError, ValueError, yaml.YAMLError) as refused:
+            self._refuse(handle, str(refused))
+            return
+        with self._lock:
+            if self._running is not None:
+                self._refuse(handle, 'a mission is running; cancel it first')
+                return
+            self._running = (handle, run, pipe_map)
+        handle.set_accepted('planned: %d PABs' % len(route_plan.steps))
+        threading.Thread(target=self._run, args=(handle, run), name='mission', daemon=True).start()
+
+    def _prepare(self, goal):
+        """Map, plan and policy of a goal; raises with the reason it cannot run."""
+        pipe_map = network.load(map_path(goal.map))
+        route_plan = planner.plan(pipe_map, list(goal.points), self.settings, self.max_drive_mm,
+                                  goal.speed or None, not goal.no_home)
+        policy = yaml.safe_load(goal.policy) if goal.policy else None
+        if policy is not None and not isinstance(policy, dict):
+            raise ValueError('policy: a mapping {PAB name or default: {retries: N}} is needed, got %r' % policy)
+        return pipe_map, route_plan, policy
+
+    @staticmethod
+    def _refuse(handle, reason):
+        rospy.logwarn('mission refused: %s', reason)
+        handle.set_rejected(MissionResult(status='refused', message=reason), reason)
+
+    def _run(self, handle, run):
+        outcome = run.run()
+        result = MissionResult(status=outcome.status, message=outcome.message,
+                               plan=planner.format_plan(run.plan), log=outcome.log)
+        with self._lock:
+            self._running = None
+        if outcome.status in ('succeeded', 'manual'):
+            handle.set_succeeded(result, outcome.message)
+        elif outcome.status == 'cancelled' and handle.get_goal_status().status == GoalStatus.PREEMPTING:
+            handle.set_canceled(result, outcome.message)
+        else:
+            handle.set_aborted(result, outcome.message)
+
+    def _on_cancel(self, handle):
+        with self._lock:
+            running = self._running
+        if running is not None and running[0].get_goal_id().id == handle.get_goal_id().id:
+            running[1].cancel()
+
+    def _feedback(self, handle, progress):
+        if handle is not None and not rospy.is_shutdown():
+            handle.publish_feedback(MissionFeedback(
+                step=progress.step, steps=progress.steps, pab=progress.pab, along_mm=progress.along_m * 1000,
+                time_left_s=progress.time_left_s, level=progress.level, state=progress.state,
+                waiting_for=progress.waiting_for))
+
+    # --- the operator -------------------------------------------------------
+    def _on_command(self, req):
+        with self._lock:
+            running = self._running
+        if running is None:
+            return MissionCommandResponse(ok=False, message='no mission is running')
+        ok, message = running[1].command(req.command)
+        return MissionCommandResponse(ok=ok, message=message)
+
+    # --- where the robot is -------------------------------------------------
+    def _publish_pose(self, _event):
+        with self._lock:
+            running = self._running
+        if running is None or self.robot.odometry_mm is None:
+            return
+        along_m = running[1].localiser.estimate(self.robot.odometry_mm)
+        position, quaternion = pose_along(running[2], along_m)
+        pose = PoseStamped()
+        pose.header.stamp, pose.header.frame_id = rospy.Time.now(), names.MAP_FRAME
+        (pose.pose.position.x, pose.pose.position.y, pose.pose.position.z) = position
+        (pose.pose.orientation.x, pose.pose.orientation.y, pose.pose.orientation.z,
+         pose.pose.orientation.w) = quaternion
+        self._pose_pub.publish(pose)
+        self._along_pub.publish(Float64(data=along_m * 1000.0))
+
+
+def main():
+    rospy.init_node('mission_executive')
+    MissionExecutiveNode()
+    rospy.spin()

@@ -1,0 +1,76 @@
+#!/usr/bin/env python3
+"""A mission over ROS (issue 11): refused routes, and a route paused during
+its drive and resumed, that still ends at its target.
+
+Waits on feedback and results (conditions), never on sleeps."""
+import threading
+import unittest
+
+import actionlib
+import rospy
+import rostest
+from actionlib_msgs.msg import GoalStatus
+
+from ready import wait_robot_connected
+from pirate import names
+from pirate.msg import MissionAction, MissionGoal
+from pirate.srv import MissionCommand, ServerStatus
+
+WAIT_S = 120.0
+
+
+class MissionTest(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('mission_test')
+        wait_robot_connected()
+        cls.client = actionlib.SimpleActionClient(names.MISSION_ACTION, MissionAction)
+        assert cls.client.wait_for_server(rospy.Duration(60))
+        rospy.wait_for_service(names.MISSION_COMMAND_SERVICE, 60)
+        cls.command = rospy.ServiceProxy(names.MISSION_COMMAND_SERVICE, MissionCommand)
+        cls.status = rospy.ServiceProxy(names.SERVER_STATUS_SERVICE, ServerStatus)
+
+    def test_1_a_route_the_map_cannot_serve_is_refused_with_the_reason(self):
+        self.client.send_goal(MissionGoal(map='straight_90', points=['pit', 'nowhere']))
+        self.assertTrue(self.client.wait_for_result(rospy.Duration(WAIT_S)))
+        self.assertEqual(self.client.get_state(), GoalStatus.REJECTED)
+        self.assertIn("no point 'nowhere'", self.client.get_result().message)
+        self.assertFalse(self.status().active)        # nothing was sent to the Pirate Server
+
+    def test_2_pause_during_the_drive_holds_and_resume_ends_at_the_target(self):
+        cond, seen = threading.Condition(), []
+
+        def feedback(fb):
+            with cond:
+                seen.append(fb)
+                cond.notify_all()
+
+        def wait_for(predicate):
+            with cond:
+                self.assertTrue(cond.wait_for(lambda: any(predicate(f) for f in seen), WAIT_S),
+                                'no such feedback; seen %s' % [(f.step, f.pab, f.waiting_for) for f in seen[-5:]])
+
+        self.client.send_goal(MissionGoal(map='straight_90', points=['pit', 'target'], speed=50.0),
+                              feedback_cb=feedback)
+        wait_for(lambda f: f.pab == 'DRIVE' and f.state == 'running')
+        answer = self.command('pause')
+        self.assertTrue(answer.ok, answer.message)
+        wait_for(lambda f: f.waiting_for.startswith('resume'))
+        status = self.status()
+        self.assertFalse(status.active)              # the drive was cancelled: the robot is held
+        self.assertEqual(self.command('jump').ok, False)
+        self.assertTrue(self.command('resume').ok)
+        self.assertTrue(self.client.wait_for_result(rospy.Duration(WAIT_S)))
+        result = self.client.get_result()
+        self.assertEqual(self.client.get_state(), GoalStatus.SUCCEEDED, result.message)
+        self.assertEqual(result.status, 'succeeded')
+        self.assertTrue(any('pause asked' in line for line in result.log))
+        drives = [line for line in result.log if line.startswith('step') and 'DRIVE' in line]
+        self.assertEqual(len(drives), 2, result.log)  # the drive, and what was left of it
+        self.assertTrue(any(line.startswith('step') and 'HOME' in line for line in result.log))
+        self.assertFalse(self.command('pause').ok)   # no mission runs any more
+
+
+if __name__ == '__main__':
+    rostest.rosrun('pirate', 'mission_pause', MissionTest)
