@@ -23,7 +23,7 @@ import ready
 import viz_rviz
 from pirate import names
 from pirate.msg import PirateAction, PirateGoal
-from pirate.sim.robot_end import world_path
+from pirate.world.network import world_path
 from pirate.viz import world_markers
 from pirate.world import network
 

@@ -33,7 +33,7 @@ from pirate.srv import MissionCommand, MissionCommandResponse
 from pirate.supervisory import executive as ex
 from pirate.supervisory import planner
 from pirate.supervisory.localiser import Localiser
-from pirate.supervisory.plan_cli import load_settings, map_path
+from pirate.supervisory.plan_cli import load_settings
 from pirate.world import network
 from pirate.world.pose import pose_along
 
@@ -140,7 +140,7 @@ class MissionExecutiveNode(object):
 
     def _prepare(self, goal):
         """Map, plan and policy of a goal; raises with the reason it cannot run."""
-        pipe_map = network.load(map_path(goal.map))
+        pipe_map = network.load(network.world_path(goal.map))
         route_plan = planner.plan(pipe_map, list(goal.points), self.settings, self.max_drive_mm,
                                   goal.speed or None, not goal.no_home)
         policy = yaml.safe_load(goal.policy) if goal.policy else None

@@ -17,15 +17,7 @@ from pirate.sequencer.guards import load_files
 from pirate.supervisory import planner
 from pirate.world import network
 
-WORLDS_DIR = os.path.join(paths.CONFIG_DIR, 'worlds')
 SETTINGS_FILE = os.path.join(paths.CONFIG_DIR, 'supervisory.yaml')
-
-
-def map_path(name):
-    """A world file's path from a path or a name in config/worlds/."""
-    if os.path.exists(name):
-        return name
-    return os.path.join(WORLDS_DIR, name if name.endswith('.yaml') else name + '.yaml')
 
 
 def load_settings(path=SETTINGS_FILE):
@@ -44,7 +36,7 @@ def main(argv=None):
     args = parser.parse_args(argv)
     try:
         settings, max_drive_mm = load_settings()
-        pipe_map = network.load(map_path(args.map))
+        pipe_map = network.load(network.world_path(args.map))
         route_plan = planner.plan(pipe_map, args.points, settings, max_drive_mm, args.speed, not args.no_home)
     except (network.WorldError, planner.PlanError) as refused:
         print('plan_mission: %s' % refused, file=sys.stderr)

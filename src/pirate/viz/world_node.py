@@ -15,11 +15,11 @@ from visualization_msgs.msg import Marker, MarkerArray
 
 from pirate import names
 from pirate.sim import twin_model
-from pirate.sim.robot_end import world_path
+from pirate.world.network import world_path
 from pirate.viz import world_markers
 from pirate.world import network
 
-FRAME = 'world'
+FRAME = names.MAP_FRAME
 PIPE_RGBA = (0.55, 0.7, 0.85, 0.3)
 MODULE_RGBA = (0.85, 0.45, 0.1, 1.0)        # the URDF's pirate orange
 WHEEL_RGBA = (0.1, 0.1, 0.1, 1.0)

@@ -28,10 +28,14 @@ metres: x along the travel direction, y to the left, z up.
 """
 import collections
 import math
+import os
 
 import yaml
 
+from pirate import paths
+
 DIAMETERS_MM = (90, 110)
+WORLDS_DIR = os.path.join(paths.CONFIG_DIR, 'worlds')
 TURNS = {'left': ((0, 0, 1), 1), 'right': ((0, 0, 1), -1), 'up': ((0, 1, 0), -1), 'down': ((0, 1, 0), 1)}
 PIECE_KEYS = {
     'straight': {'length_mm': True, 'diameter_mm': False},
@@ -109,6 +113,13 @@ class Network(object):
     def diameter_at(self, along_m):
         """Inner diameter (m) of the piece at ``along_m``."""
         return self.pieces[self.locate(along_m)[0]].diameter
+
+
+def world_path(world):
+    """A world file: a path, or a name under config/worlds/ ('straight_90')."""
+    if os.path.sep in world or world.endswith('.yaml'):
+        return world
+    return os.path.join(WORLDS_DIR, world + '.yaml')
 
 
 def load(path):
