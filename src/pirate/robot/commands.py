@@ -30,6 +30,9 @@ import time
 from pirate.robot import safety, tables, units
 
 
+#: s between two re-sends of an unchanged control array (Control.tick).
+CONTROL_REFRESH_S = 1.0
+
 class CommandArray(object):
     """A fixed-size command array with thread-safe get/set and paced publish."""
 
@@ -140,6 +143,7 @@ class Control(CommandArray):
     """The 12-element control-mode array (Table 4.2); changes go out at once."""
 
     size = tables.CONTROL_SIZE
+    _refreshed_at = float('-inf')
 
     def set_mode(self, name, mode):
         """Put element ``name`` in ``mode`` ('pwm', 'torque', ...); publish if changed."""
@@ -180,6 +184,19 @@ class Control(CommandArray):
         """Raw code at ``index``."""
         with self._lock:
             return self._values[index]
+
+    def tick(self, now):
+        """Re-send the array every :data:`CONTROL_REFRESH_S` (``now``: monotonic s).
+
+        Modes go out at once when they change; this refresh is for a device
+        that lost them: a reset Mega re-subscribes behind a host that does
+        not re-send latched messages (rosserial_python holds the boards until
+        control arrives again, issue 14.3), so what the boards run matches
+        what the laptop believes within a second, whatever the host."""
+        if now - self._refreshed_at < CONTROL_REFRESH_S:
+            return None
+        self._refreshed_at = now
+        return self._send()
 
     def set_all(self, codes):
         """Write all 12 codes (each checked); publish once if anything changed."""

@@ -209,6 +209,7 @@ class PirateManager(object):
             return      # shutting down: the safe hold is the last array sent
         self.setpoint.tick()
         self.limit.tick()
+        self.control.tick(time.monotonic())
         self._publish_progress()
 
     def _start_robot(self):
