@@ -42,6 +42,9 @@ class FakeFeed(object):
     def latest(self):
         return self.current
 
+    def check(self):
+        """Neither cancelled nor without feedback (RobotFeed.check)."""
+
     def wait_until(self, guard, timeout, describe='guard'):
         self.waits.append((describe, guard, timeout, self.arrays()))
         if self.outcome is not None:
@@ -250,12 +253,19 @@ def test_safe_hold_zeroes_before_the_mode_changes(rig):
     assert zeroed and zeroed[0] < first_control
 
 
-def test_safe_hold_rotation_beyond_limit_is_saturated(rig):
+@pytest.mark.parametrize('reading', [-0.9, 15.36, float('nan')])
+def test_safe_hold_keeps_the_rotation_target_on_an_implausible_reading(rig, reading):
+    """Issue 14.5: a reading beyond +-0.7 rad is a bad sensor, not a place to go.
+
+    (It used to be saturated: a bogus 15.36 rad drove the rotation to +0.7.)
+    """
     prims, feed, _ = rig
     prims.control.set_mode('rotation', 'position')
-    feed.current = view(rotation=-0.9)
+    prims.setpoint.set('rotation', units.rad_to_rotation(0.2))
+    feed.current = view(rotation=reading)
     prims.safe_hold()
-    assert prims.setpoint.get('rotation') == units.rad_to_rotation(-safety.ROTATION_MAX_RAD)
+    assert prims.setpoint.get('rotation') == units.rad_to_rotation(0.2)
+    assert abs(units.rotation_to_rad(prims.setpoint.get('rotation'))) <= safety.ROTATION_MAX_RAD
 
 
 def test_safe_hold_front_in_position_mode_stops_in_pwm(rig):

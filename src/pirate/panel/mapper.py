@@ -182,7 +182,7 @@ class Mapper(object):
         self._log('playing (%s mode)' % self.operation_mode)
 
     def _on_stop(self, entry, value):
-        if self.operation_mode == PAB and self._pab.is_active():
+        if self._pab.is_active():     # a PAB sent by any client, in either mode (issue 14.8)
             self._pab.cancel()
             self._log('Stop: the running PAB is cancelled')
         self._control.command('stop')

@@ -13,13 +13,21 @@ Publishing policy (report 4.6):
 - :meth:`CommandArray.publish_now` bypasses the 10 Hz pacing, for the safe
   hold only (cancel must reach the wire fast).
 
+Order on the wire (issue 13.1): Setpoint and Control share one re-entrant
+``wire_lock``; a copy is taken and published under it, so the wire sees the
+arrays in the order their values were written, whichever thread writes.
+The safe hold (:mod:`pirate.robot.hold`) takes the same lock for its whole
+write, and a PAB writes under it only while its goal is not cancelled
+(:meth:`pirate.sequencer.primitives.MotionPrimitives.writing`): nothing a
+cancelled PAB had in flight can land on the wire after the hold.
+
 Pure Python: the ROS publisher and the clock are passed in.
 """
 import contextlib
 import threading
 import time
 
-from pirate.robot import safety, tables
+from pirate.robot import safety, tables, units
 
 
 class CommandArray(object):
@@ -27,7 +35,8 @@ class CommandArray(object):
 
     size = 0
 
-    def __init__(self, publisher, make_msg, clock=time.monotonic, log=None):
+    def __init__(self, publisher, make_msg, clock=time.monotonic, log=None, wire_lock=None):
+        self.wire_lock = wire_lock or threading.RLock()
         self._publisher = publisher
         self._make_msg = make_msg
         self._clock = clock
@@ -65,10 +74,11 @@ class CommandArray(object):
                                      % (type(self).__name__.lower(), self.size, len(values)))
 
     def _send(self):
-        with self._lock:
-            msg = self._make_msg(list(self._values))
-        self._publisher.publish(msg)
-        self.published += 1
+        with self.wire_lock:
+            with self._lock:
+                msg = self._make_msg(list(self._values))
+            self._publisher.publish(msg)
+            self.published += 1
         return msg
 
     def publish_now(self):
@@ -82,9 +92,13 @@ class Setpoint(CommandArray):
     size = tables.SETPOINT_SIZE
 
     def __init__(self, publisher, make_msg, control, **kwargs):
+        kwargs.setdefault('wire_lock', control.wire_lock)
         super(Setpoint, self).__init__(publisher, make_msg, **kwargs)
         self._control = control
         self.enabled = False
+        #: ``measured() -> {joint: rad}`` (or None): what Play puts in
+        #: position-mode elements; set by the owner that reads the robot.
+        self.measured = lambda: None
 
     def set(self, name, value):
         """Write element ``name``; return the counts actually stored.
@@ -140,11 +154,12 @@ class Control(CommandArray):
         """Write a raw mode/command code at ``index``; publish at once if changed."""
         with self._logging_refusals():
             safety.check_control_code(index, code)
-        with self._lock:
-            changed = self._values[index] != code
-            self._values[index] = code
-        if changed:
-            self._send()
+        with self.wire_lock:
+            with self._lock:
+                changed = self._values[index] != code
+                self._values[index] = code
+            if changed:
+                self._send()
         return changed
 
     def command(self, name):
@@ -172,11 +187,12 @@ class Control(CommandArray):
         with self._logging_refusals():
             for index, code in enumerate(codes):
                 safety.check_control_code(index, code)
-        with self._lock:
-            changed = self._values != list(codes)
-            self._values = list(codes)
-        if changed:
-            self._send()
+        with self.wire_lock:
+            with self._lock:
+                changed = self._values != list(codes)
+                self._values = list(codes)
+            if changed:
+                self._send()
         return changed
 
 
@@ -221,7 +237,28 @@ def play(control, setpoint, limit):
     """Start the robot: PLAY to the boards and the 10 Hz setpoint/limit stream.
 
     Used by the Mapper's Play button and by the Pirate Server when a goal
-    starts (a goal is a request to move).
+    starts (a goal is a request to move). Play never moves anything by
+    itself (issue 14.4): every position-mode joint with an angle sensor gets
+    its measured angle as setpoint first (a stored target, e.g. rotation 0,
+    would turn it), and keeps it until someone writes a new one.
     """
-    control.command('play')
-    setpoint.enabled = limit.enabled = True
+    with control.wire_lock:
+        hold_measured(control, setpoint, setpoint.measured())
+        control.command('play')
+        setpoint.enabled = limit.enabled = True
+
+
+def hold_measured(control, setpoint, angles):
+    """Setpoint = measured angle for every position-mode joint that has a sensor."""
+    elements = {e.name for e in tables.SETPOINT_ELEMENTS}
+    for joint in tables.JOINTS:
+        rad = (angles or {}).get(joint.name)
+        if joint.board is None or joint.name not in elements or rad is None:
+            continue
+        if control.mode_of(joint.name) != 'position':
+            continue
+        if joint.angle_unit == tables.ROTATION:
+            if safety.rotation_ok(rad):     # beyond the limit: a bad reading, keep the target
+                setpoint.set(joint.name, units.rad_to_rotation(rad))
+        else:
+            setpoint.set(joint.name, units.rad_to_encoder(rad))

@@ -10,9 +10,15 @@ lost feedback), by the manager on shutdown, and by the Mapper's Stop.
   The setpoint is zeroed and sent before the mode changes, so no motor ever
   sees a torque setpoint as a PWM duty.
 - Wheels: 0 in their mode (velocity 0 brakes, PWM 0 coasts to a stop).
-- Rotation (position mode only): target = its current angle, when known,
-  so it stays put instead of aligning to 0.
+- Rotation (position mode only): target = its current angle, when known
+  and plausible (within the rotation limit), so it stays put instead of
+  aligning to 0; a reading beyond the limit is a bad sensor, not a place to
+  go (issue 14.5): the target it had is kept.
 Cameras and LEDs are the operator's (allowed in PAB mode) and are left alone.
+
+Atomic on the wire (issue 13.1): the whole hold is written and sent under
+the arrays' ``wire_lock``, so no other writer's array can be sent between
+its parts or (being older) after it.
 """
 from pirate.robot import safety, units
 
@@ -24,13 +30,13 @@ def safe_hold(setpoint, control, angles=None):
 
     ``angles``: current joint angles (rad) by name, if known.
     """
-    for joint in HOLD_PWM + ('wheels',):
-        setpoint.set(joint, 0)
-    rotation = (angles or {}).get('rotation')
-    if rotation is not None and control.mode_of('rotation') == 'position':
-        held = max(-safety.ROTATION_MAX_RAD, min(safety.ROTATION_MAX_RAD, rotation))
-        setpoint.set('rotation', units.rad_to_rotation(held))
-    sent = setpoint.publish_now()
-    for joint in HOLD_PWM:
-        control.set_mode(joint, 'pwm')
-    return sent
+    with control.wire_lock:
+        for joint in HOLD_PWM + ('wheels',):
+            setpoint.set(joint, 0)
+        rotation = (angles or {}).get('rotation')
+        if rotation is not None and safety.rotation_ok(rotation) and control.mode_of('rotation') == 'position':
+            setpoint.set('rotation', units.rad_to_rotation(rotation))
+        sent = setpoint.publish_now()
+        for joint in HOLD_PWM:
+            control.set_mode(joint, 'pwm')
+        return sent

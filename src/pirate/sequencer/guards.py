@@ -110,6 +110,47 @@ def load_files(config_dir=CONFIG_DIR):
     return tables, common
 
 
+class BadConfig(ValueError):
+    """A sequencer setting that is missing, not a number, or out of its range."""
+
+
+#: Safety settings of config/sequencer.yaml and their allowed ranges
+#: (issue 14.6: checked at load, never silently accepted). Key path -> (low, high).
+RANGES = {
+    ('primitive_timeout',): (1.0, 60.0),
+    ('feedback_timeout',): (0.05, 2.0),
+    ('wall_timeout_factor',): (1.0, 10.0),
+    ('max_primitives',): (1, 200),
+    ('align_tolerance',): (0.001, 0.2),
+    ('rotate_tolerance',): (0.001, 0.2),
+    ('drive', 'default_speed'): (1.0, 170.0),
+    ('drive', 'max_distance'): (1.0, 20000.0),
+    ('drive', 'creep_speed'): (1.0, 170.0),
+    ('drive', 'creep_lead'): (0.0, 5.0),
+    ('drive', 'stop_lead'): (0.0, 5.0),
+    ('drive', 'tolerance'): (0.5, 100.0),
+    ('drive', 'no_progress_s'): (0.1, 5.0),
+    ('drive', 'no_progress_mm'): (0.1, 50.0),
+    ('drive', 'time_margin_s'): (0.1, 30.0),
+}
+
+
+def check_common(common):
+    """Raise :class:`BadConfig` naming every setting that is missing or out of range."""
+    problems = []
+    for path, (low, high) in sorted(RANGES.items()):
+        value = common
+        for key in path:
+            value = value.get(key) if isinstance(value, dict) else None
+        name = '/'.join(path)
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            problems.append('%s = %r is not a number' % (name, value))
+        elif not low <= value <= high:
+            problems.append('%s = %r outside [%g, %g]' % (name, value, low, high))
+    if problems:
+        raise BadConfig('sequencer settings refused: ' + '; '.join(problems))
+
+
 class GuardBook(object):
     """All diameters: ``book.for_diameter(90)`` or NoGuards with the reason.
 
@@ -118,6 +159,7 @@ class GuardBook(object):
     """
 
     def __init__(self, tables, common):
+        check_common(common)
         self._tables = {int(t['pipe_diameter']): t for t in tables.values()}
         self.common = common
 

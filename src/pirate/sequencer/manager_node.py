@@ -21,9 +21,11 @@ import time
 
 import actionlib
 import rospy
+from actionlib_msgs.msg import GoalStatus
 
 from pirate import names
 from pirate.robot import commands
+from pirate.state.assembler import stale_reason
 from pirate.state.feed import RobotFeed, RobotView
 from pirate.sequencer.guards import GuardBook
 from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, PirateGoal,
@@ -33,6 +35,8 @@ from pirate.sequencer.server import ABORTED, PREEMPTED, SUCCEEDED, PirateServer
 from pirate.srv import ServerStatus, ServerStatusResponse
 
 SHUTDOWN_FLUSH_S = 0.3
+TERMINAL = (GoalStatus.SUCCEEDED, GoalStatus.ABORTED, GoalStatus.PREEMPTED, GoalStatus.RECALLED,
+            GoalStatus.REJECTED)
 
 
 class PabClient(object):
@@ -55,8 +59,9 @@ class PabClient(object):
         rospy.loginfo('PAB ended: %s', result.message if result else 'no result')
 
     def cancel(self):
-        """Cancel the running goal."""
-        self._client.cancel_all_goals()
+        """Cancel the running goal (this client's own; a cancel-all would also
+        poke actionlib's goal-less cancel records and log errors, issue 14.8)."""
+        self._client.cancel_goal()
         self._server.cancel()
 
     def is_active(self):
@@ -79,11 +84,13 @@ class PirateManager(object):
             rospy.Publisher(names.LIMITS_TOPIC, LimitArray, queue_size=1),
             lambda data: LimitArray(data=data), log=log)
         book = GuardBook(rospy.get_param('~guards'), rospy.get_param('~sequencer'))
-        self.feed = RobotFeed(book.common['feedback_timeout'])
+        self.feed = RobotFeed(book.common['feedback_timeout'], wall_factor=book.common['wall_timeout_factor'])
+        self.setpoint.measured = self._measured_angles   # Play holds position joints where they are
         self.prims = MotionPrimitives(self.setpoint, self.control, self.limit, self.feed)
         self.server = PirateServer(self.prims, self.feed, book, self._start_robot,
                                    feedback=self._publish_feedback, log=rospy.loginfo)
         self._goal_lock = threading.Lock()
+        self._closing = threading.Event()
         self._current = None
         self._pending = threading.Condition()
         self._queue = []
@@ -107,12 +114,20 @@ class PirateManager(object):
 
     # --- robot side -------------------------------------------------------
     def _on_state(self, msg):
-        if msg.stale:
-            return      # old angles are no feedback: let the watchdog see silence
+        if msg.stale:   # old angles are no feedback: the running primitive ends now
+            self.feed.lose(stale_reason(tuple(bytearray(msg.silent_boards)), float('inf')))
+            return
         self.feed.push(RobotView(dict(zip(msg.name, msg.position)), msg.orientation,
                                  msg.odometry, msg.velocity, msg.header.stamp.to_sec()))
 
+    def _measured_angles(self):
+        """Joint angles (rad) of a fresh robot state, or None."""
+        view = self.feed.latest()
+        return view.angles if view is not None and self.feed.fresh() else None
+
     def _tick(self, _event):
+        if self._closing.is_set():
+            return      # shutting down: the safe hold is the last array sent
         self.setpoint.tick()
         self.limit.tick()
 
@@ -122,17 +137,26 @@ class PirateManager(object):
 
     # --- action side ------------------------------------------------------
     def _on_goal(self, handle):
+        """Accept at most one goal: ``_current`` is set from acceptance until its
+        handle is terminal (issue 14.2), so no second goal is active meanwhile
+        and every cancel of this one finds it."""
         goal = handle.get_goal()
-        reason = self.server.reserve(goal)
+        with self._pending:
+            reason = self._busy() or self.server.reserve(goal)
+            if not reason:
+                handle.set_accepted('accepted')
+                self._current = handle
+                self._queue.append(handle)
+                self._pending.notify()
         if reason:
             rospy.logwarn('goal refused: %s', reason)
             handle.set_rejected(PirateResult(success=False, message=reason), reason)
-            return
-        handle.set_accepted('accepted')
-        with self._pending:
-            self._current = handle
-            self._queue.append(handle)
-            self._pending.notify()
+
+    def _busy(self):
+        """Reason while the current goal's handle is not terminal yet."""
+        if self._current is None or self._current.get_goal_status().status in TERMINAL:
+            return None
+        return 'a PAB is running (goal %s is ending): goals are not queued' % self._current.get_goal_id().id
 
     def _on_cancel(self, handle):
         with self._pending:
@@ -149,8 +173,6 @@ class PirateManager(object):
                 handle = self._queue.pop(0)
             outcome = self.server.run(handle.get_goal())
             result = PirateResult(success=outcome.status == SUCCEEDED, message=outcome.message)
-            with self._pending:
-                self._current = None
             if outcome.status == SUCCEEDED:
                 handle.set_succeeded(result, outcome.message)
             elif outcome.status == PREEMPTED:
@@ -158,10 +180,13 @@ class PirateManager(object):
             else:
                 assert outcome.status == ABORTED
                 handle.set_aborted(result, outcome.message)
+            with self._pending:
+                if self._current is handle:
+                    self._current = None     # only now: the handle is terminal
 
     def _publish_feedback(self, fb):
         handle = self._current
-        if handle is not None:
+        if handle is not None and not rospy.is_shutdown():
             handle.publish_feedback(PirateFeedback(server_state=fb.server_state, pab_state=fb.pab_state,
                                                    primitive=fb.primitive, guard=fb.guard))
 
@@ -173,6 +198,7 @@ class PirateManager(object):
     # --- shutdown ---------------------------------------------------------
     def shutdown(self, *_signal):
         """SIGINT/SIGTERM: cancel, publish the safe hold, let it reach the wire."""
+        self._closing.set()
         self.server.cancel()
         self.prims.safe_hold()
         time.sleep(SHUTDOWN_FLUSH_S)   # give the publisher thread time to send it

@@ -5,7 +5,14 @@ on the robot state for their guard (event-driven, :mod:`pirate.state.feed`), wit
 a timeout and an immediate stop on cancel. Guards and setpoints come from
 :class:`pirate.sequencer.guards.Guards`; limits are those of :mod:`pirate.robot.safety`,
 enforced inside the Setpoint/Control classes. Pure Python.
+
+Every write happens in :meth:`MotionPrimitives.writing`: under the arrays'
+wire lock and only while the goal is neither cancelled nor without
+feedback, so a Stop's safe hold is always the last thing a cancelled PAB
+puts on the wire (issue 13.1).
 """
+import contextlib
+
 from pirate.robot import safety, units
 from pirate.robot.hold import safe_hold
 
@@ -38,25 +45,40 @@ class MotionPrimitives(object):
         self.guards = guards
         self.executed = []
 
+    @contextlib.contextmanager
+    def writing(self):
+        """Write under the wire lock, or raise Cancelled/FeedbackLost instead.
+
+        The check and the writes are one step for the safe hold, which takes
+        the same lock: a hold never lands between them.
+        """
+        with self.control.wire_lock:
+            self.feed.check()
+            yield
+
     # --- basic ------------------------------------------------------------
     def move_module(self, joint, counts):
         """Setpoint for the front module or a bend module (counts)."""
-        self.setpoint.set(joint, counts)
+        with self.writing():
+            self.setpoint.set(joint, counts)
 
     def change_control_mode(self, joint, mode):
         """Control mode of one motor; goes out at once if it changed."""
-        self.control.set_mode(joint, mode)
+        with self.writing():
+            self.control.set_mode(joint, mode)
 
     def change_limit(self, bend, value):
         """Torque limit of one bend module (uint16, 0xFFFF none)."""
-        self.limit.set(bend, value)
+        with self.writing():
+            self.limit.set(bend, value)
 
     def drive_at_velocity(self, mm_s):
         """Wheels at ``mm_s`` (signed); refused above the robot's maximum."""
         if not safety.drive_speed_ok(mm_s):
             raise Refused('drive speed %.1f mm/s beyond %.0f mm/s' % (mm_s, safety.DRIVE_MAX_MM_S))
-        self.control.set_mode('wheels', 'velocity')
-        self.setpoint.set('wheels', units.mm_s_to_wheel_counts(mm_s))
+        with self.writing():
+            self.control.set_mode('wheels', 'velocity')
+            self.setpoint.set('wheels', units.mm_s_to_wheel_counts(mm_s))
 
     # --- advanced ---------------------------------------------------------
     def wait_for(self, name, guard, text, timeout=None):
@@ -78,18 +100,21 @@ class MotionPrimitives(object):
         release its torque so the other part can still move.
         """
         pair = self.guards.pair(kind, part)
-        for bend in (pair.outer, pair.inner):
-            self.control.set_mode(bend.joint, 'torque')
-            self.setpoint.set(bend.joint, bend.setpoint)
+        self._bends_in_torque(pair)
         self.wait_for(clamp_name(kind, part), lambda v: pair.closed(v.angles), pair.describe(True))
-        self.setpoint.set(pair.inner.joint, 0)
+        with self.writing():
+            self.setpoint.set(pair.inner.joint, 0)
+
+    def _bends_in_torque(self, pair):
+        with self.writing():
+            for bend in (pair.outer, pair.inner):
+                self.control.set_mode(bend.joint, 'torque')
+                self.setpoint.set(bend.joint, bend.setpoint)
 
     def unclamp(self, part, partial=False):
         """Open ``part``'s V fully (Home) or partially (re-adjust), 4.7.2.5."""
         pair = self.guards.pair('unclamp_partial' if partial else 'unclamp', part)
-        for bend in (pair.outer, pair.inner):
-            self.control.set_mode(bend.joint, 'torque')
-            self.setpoint.set(bend.joint, bend.setpoint)
+        self._bends_in_torque(pair)
         self.wait_for('unclamp %s%s' % (part, ' partial' if partial else ''),
                       lambda v: pair.opened(v.angles), pair.describe(False))
 
@@ -102,8 +127,9 @@ class MotionPrimitives(object):
         if not safety.rotation_ok(target_rad):
             raise Refused('rotation %.3f rad beyond +-%.1f rad' % (target_rad, safety.ROTATION_MAX_RAD))
         tolerance = self.guards.rotate_tolerance
-        self.control.set_mode('rotation', 'position')
-        self.setpoint.set('rotation', units.rad_to_rotation(target_rad))
+        with self.writing():
+            self.control.set_mode('rotation', 'position')
+            self.setpoint.set('rotation', units.rad_to_rotation(target_rad))
         self.wait_for(name, lambda v: abs(v.angles['rotation'] - target_rad) <= tolerance,
                    '|rotation - %.3f| <= %.4f' % (target_rad, tolerance))
 
@@ -114,8 +140,9 @@ class MotionPrimitives(object):
     def move_front(self, kind='move_front'):
         """Front module up (or down) in PWM until its guard, then stop it."""
         move = self.guards.move(kind)
-        self.control.set_mode('front_tilt', 'pwm')
-        self.setpoint.set('front_tilt', move.setpoint)
+        with self.writing():
+            self.control.set_mode('front_tilt', 'pwm')
+            self.setpoint.set('front_tilt', move.setpoint)
         if move.setpoint >= 0:
             guard, text = (lambda v: v.angles['front_tilt'] >= move.guard), 'front_tilt >= %.3f' % move.guard
         else:
@@ -123,7 +150,8 @@ class MotionPrimitives(object):
         try:
             self.wait_for(kind.replace('_', ' '), guard, text)
         finally:
-            self.setpoint.set('front_tilt', 0)
+            with self.control.wire_lock:    # 0 in PWM: what the hold writes too
+                self.setpoint.set('front_tilt', 0)
 
     # --- safety -----------------------------------------------------------
     def safe_hold(self):

@@ -87,6 +87,8 @@ class PirateServer(object):
         except NoGuards as missing:
             return '%s: %s' % (name, missing)
         view = self.feed.latest()
+        if self.feed.lost_reason:
+            return '%s: robot state stale (%s); the robot is not fully known' % (name, self.feed.lost_reason)
         if view is None or not self.feed.fresh():
             return '%s: no robot state (is the robot connected and the state node running?)' % name
         if pab_class.requires_clamped and not robot_clamped(view, guards):

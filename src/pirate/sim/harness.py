@@ -16,7 +16,7 @@ from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.primitives import MotionPrimitives
 from pirate.sequencer.server import PirateServer
 from pirate.sim.robot_end import make_robot
-from pirate.state.assembler import StateAssembler
+from pirate.state.assembler import BadState, StateAssembler, stale_reason
 
 PICO_PERIOD_S = 0.02
 STEPS_PER_CYCLE = 5
@@ -54,7 +54,9 @@ class SimHarness(object):
         self.setpoint = commands.Setpoint(self.wires['setpoint'], list, self.control)
         self.limit = commands.Limit(self.wires['limit'], list)
         book = GuardBook(*load_files())
-        self.feed = RobotFeed(feedback_timeout or book.common['feedback_timeout'])
+        self.feed = RobotFeed(feedback_timeout or book.common['feedback_timeout'],
+                              wall_factor=book.common['wall_timeout_factor'])
+        self.setpoint.measured = lambda: self.feed.latest().angles if self.feed.fresh() else None
         self.prims = MotionPrimitives(self.setpoint, self.control, self.limit, self.feed)
         self.feedback = []
         self.log = []
@@ -63,6 +65,7 @@ class SimHarness(object):
         self.assembler = StateAssembler()
         self.robot_time = 1.0
         self.frozen = False           # True: the robot stops reporting
+        self.silent = set()           # boards that stop answering (the Mega skips them)
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._robot_loop, daemon=True)
 
@@ -86,14 +89,30 @@ class SimHarness(object):
                 states = [(b, self.model.small_state(b)) for b in tables.BOARDS]
             cycle += 1
             if not self.frozen:
-                now = time.monotonic()
-                for board, data in states:
-                    self.assembler.update(board, data, now)
-                self.feed.push(view_of(self.assembler.snapshot(now), self.robot_time))
+                self._report([(b, d) for b, d in states if b not in self.silent])
             self.setpoint.tick()       # the manager's 10 Hz timer, robot time
             self.limit.tick()
             wall_next += PICO_PERIOD_S * STEPS_PER_CYCLE / self.speedup
             time.sleep(max(0.0, wall_next - time.monotonic()))
+
+    def _report(self, states):
+        """What the state node and the manager do with one Mega cycle.
+
+        The assembler's clock is robot time here, so a silent board is
+        noticed after the same robot time at any speedup (the state node
+        uses the wall clock, which is robot time on the robot).
+        """
+        now = self.robot_time
+        for board, data in states:
+            try:
+                self.assembler.update(board, data, now)
+            except BadState as bad:     # dropped whole, as the state node does
+                self.log.append(str(bad))
+        snap = self.assembler.snapshot(now)
+        if snap.stale:
+            self.feed.lose(stale_reason(snap.silent, snap.age))
+        else:
+            self.feed.push(view_of(snap, self.robot_time))
 
     def __enter__(self):
         self._thread.start()

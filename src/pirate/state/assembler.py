@@ -6,8 +6,16 @@ the (monotonic) time of arrival, so staleness is testable and does not stop
 when a simulated clock stops.
 
 Bad input rule (one place): a Small State from an unknown board, of the
-wrong length, or with a value outside what its sensor can produce is
-dropped whole, with a reason the node logs once; the previous values stay.
+wrong length, or with any element outside what its sensor can produce
+(angle, rotation, wheel speed, drive duty, gravity) is dropped whole, with a
+reason the node logs once; the previous values stay (issue 14.5).
+
+Freshness per board (issue 14.1): the Mega skips a board that does not
+answer, so the newest message of *any* board says nothing about board 22.
+Every board's last arrival is kept; one silent for ``stale_after`` (or never
+heard while others are) makes the whole state stale, naming it in
+``Snapshot.silent``. Every PAB needs every board (odometry comes only from
+board 22, the clamp angles from four others), so a stale state stops them.
 """
 import collections
 import math
@@ -21,9 +29,17 @@ STALE_AFTER_S = 0.3
 ANGLE_MAX_COUNTS = 2048
 #: An accelerometer reading this far from 1 g is not gravity.
 GRAVITY_TOLERANCE = 0.5
+#: Largest rotation reading, rad: half a turn either way. The safety limit
+#: is +-0.7 rad (pirate.robot.safety); a reading beyond half a turn is a
+#: broken sensor or a corrupted message, never the module.
+ROTATION_READING_MAX_RAD = math.pi
+#: Largest wheel speed a board can report: twice the robot's maximum.
+WHEEL_READING_MAX_MM_S = 2 * 170.0
+#: Drive duty and torque controller output, counts (the PICO's range).
+DUTY_READING_MAX = 256
 
 Snapshot = collections.namedtuple(
-    'Snapshot', 'name position effort orientation odometry velocity stale age')
+    'Snapshot', 'name position effort orientation odometry velocity stale age silent')
 
 
 class BadState(ValueError):
@@ -71,6 +87,13 @@ class StateAssembler(object):
         """Seconds since the newest Small State (inf if none yet)."""
         return now - max(self._arrival.values()) if self._arrival else float('inf')
 
+    def silent(self, now):
+        """Boards not heard for ``stale_after`` s (or never), once any board was."""
+        if not self._arrival:
+            return ()
+        return tuple(b for b in tables.BOARDS
+                     if now - self._arrival.get(b, -math.inf) > self.stale_after)
+
     def snapshot(self, now):
         """The robot's state now, as a :data:`Snapshot` (rad, mNm, mm, mm/s)."""
         positions, efforts = [], []
@@ -82,9 +105,17 @@ class StateAssembler(object):
         drive = self._raw.get(tables.ODOMETRY_BOARD)
         velocity = units.wheel_counts_to_mm_s(drive[tables.SS_VELOCITY]) if drive else 0.0
         age = self.age(now)
+        silent = self.silent(now)
         return Snapshot(list(tables.JOINT_NAMES), positions, efforts, self._orientation,
                         units.odometry_to_mm(self._odometry_counts), velocity,
-                        age > self.stale_after, age)
+                        age > self.stale_after or bool(silent), age, silent)
+
+
+def stale_reason(silent, age):
+    """Why a state is stale, naming the silent boards (issue 14.1)."""
+    if silent and len(silent) < len(tables.BOARDS):
+        return 'board%s %s silent' % ('s' if len(silent) > 1 else '', ', '.join(str(b) for b in silent))
+    return 'no Small State for %.2f s' % age
 
 
 def _check(board, data):
@@ -98,10 +129,30 @@ def _check(board, data):
         g = math.hypot(data[tables.SS_IMU_Y], data[tables.SS_IMU_Z]) / units.IMU_COUNTS_PER_G
         if abs(g - 1.0) > GRAVITY_TOLERANCE:
             raise BadState('IMU of board %d reads %.2f g, not gravity; dropped' % (board, g))
-    elif any(j.board == board and j.angle_unit == tables.ENCODER for j in tables.JOINTS):
-        if abs(data[tables.SS_ANGLE]) > ANGLE_MAX_COUNTS:
-            raise BadState('angle %d counts of board %d is beyond an AS5055 (+-%d); dropped'
-                           % (data[tables.SS_ANGLE], board, ANGLE_MAX_COUNTS))
+    else:
+        _check_angle(board, data[tables.SS_ANGLE])
+    if board in tables.DRIVE_BOARDS:
+        speed = units.wheel_counts_to_mm_s(data[tables.SS_VELOCITY])
+        if abs(speed) > WHEEL_READING_MAX_MM_S:
+            raise BadState('wheel speed %.0f mm/s of board %d is beyond +-%.0f mm/s; dropped'
+                           % (speed, board, WHEEL_READING_MAX_MM_S))
+    duty = [data[i] for i in (tables.SS_DRIVE_LOAD,) + (() if board == tables.IMU_BOARD else (tables.SS_TORQUE,))]
+    if any(abs(d) > DUTY_READING_MAX for d in duty):
+        raise BadState('drive/torque duty %s of board %d is beyond +-%d; dropped'
+                       % (duty, board, DUTY_READING_MAX))
+
+
+def _check_angle(board, counts):
+    """The angle element against what its sensor can produce."""
+    joint = next((j for j in tables.JOINTS if j.board == board), None)
+    if joint is None:
+        return
+    if joint.angle_unit == tables.ENCODER and abs(counts) > ANGLE_MAX_COUNTS:
+        raise BadState('angle %d counts of board %d is beyond an AS5055 (+-%d); dropped'
+                       % (counts, board, ANGLE_MAX_COUNTS))
+    if joint.angle_unit == tables.ROTATION and abs(units.rotation_to_rad(counts)) > ROTATION_READING_MAX_RAD:
+        raise BadState('rotation %d counts (%.2f rad) of board %d is beyond +-%.2f rad; dropped'
+                       % (counts, units.rotation_to_rad(counts), board, ROTATION_READING_MAX_RAD))
 
 
 def _orientation(data):

@@ -9,7 +9,11 @@ state, on cancel, and a few times a second to check two clocks:
   report's 15 s;
 - the feedback watchdog runs on the *monotonic wall clock*: when states stop
   arriving (a stopped simulated clock included) the wait ends with
-  :class:`FeedbackLost` within ``feedback_timeout`` plus one poll.
+  :class:`FeedbackLost` within ``feedback_timeout`` plus one poll; a state
+  reported stale (a silent board, :meth:`RobotFeed.lose`) ends it at once;
+- every wait also has a wall-clock bound (``wall_factor`` x its timeout),
+  so no primitive outlives its timeout because robot time stopped or
+  crawls (issue 14.6).
 
 Pure Python: no ROS; the manager pushes states in.
 """
@@ -45,20 +49,35 @@ class FeedbackLost(Interrupted):
 class RobotFeed(object):
     """Newest :data:`RobotView`, cancel flag, and guard waiting."""
 
-    def __init__(self, feedback_timeout=0.3, clock=time.monotonic):
+    def __init__(self, feedback_timeout=0.3, clock=time.monotonic, wall_factor=2.0):
         self.feedback_timeout = feedback_timeout
+        self.wall_factor = wall_factor
         self._clock = clock
         self._cond = threading.Condition()
         self._latest = None
         self._arrival = -math.inf
         self._cancelled = False
+        self._lost = None           # why the newest state is unusable, or None
 
     def push(self, view):
         """A new state from the robot (called by the subscriber)."""
         with self._cond:
             self._latest = view
             self._arrival = self._clock()
+            self._lost = None
             self._cond.notify_all()
+
+    def lose(self, reason):
+        """The robot reported its state stale (``reason`` names the silent boards)."""
+        with self._cond:
+            self._lost = reason
+            self._cond.notify_all()
+
+    @property
+    def lost_reason(self):
+        """Why the state is not usable now (a silent board), or None."""
+        with self._cond:
+            return self._lost
 
     def latest(self):
         """The newest state, or None before the first."""
@@ -68,7 +87,7 @@ class RobotFeed(object):
     def fresh(self):
         """True when a state arrived within the feedback timeout."""
         with self._cond:
-            return self._clock() - self._arrival <= self.feedback_timeout
+            return self._lost is None and self._clock() - self._arrival <= self.feedback_timeout
 
     def since_last_state(self):
         """Wall seconds since the newest state (inf before the first)."""
@@ -99,6 +118,8 @@ class RobotFeed(object):
     def _check_locked(self):
         if self._cancelled:
             raise Cancelled('cancelled by the operator')
+        if self._lost is not None:
+            raise FeedbackLost('robot state stale: %s' % self._lost)
         silent = self._clock() - self._arrival
         if silent > self.feedback_timeout:
             raise FeedbackLost('no robot state for %.2f s (limit %.2f s)'
@@ -111,7 +132,7 @@ class RobotFeed(object):
         after ``timeout`` s of robot time without the guard.
         """
         with self._cond:
-            start = None
+            start, wall_end = None, self._clock() + self.wall_factor * timeout
             while True:
                 self._check_locked()
                 view = self._latest
@@ -121,4 +142,7 @@ class RobotFeed(object):
                     start = view.stamp if start is None else start
                     if view.stamp - start > timeout:
                         raise TimedOut('%s not reached within %.1f s' % (describe, timeout))
+                if self._clock() > wall_end:
+                    raise TimedOut('%s not reached within %.1f s of wall clock (%.0f x its %.1f s)'
+                                   % (describe, self.wall_factor * timeout, self.wall_factor, timeout))
                 self._cond.wait(POLL_S)

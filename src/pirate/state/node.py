@@ -17,7 +17,7 @@ from sensor_msgs.msg import Imu, JointState
 from pirate import names
 from pirate.msg import RobotState, SmallState
 from pirate.srv import ImuSensor, ImuSensorResponse, JointSensors, JointSensorsResponse
-from pirate.state.assembler import BadState, StateAssembler
+from pirate.state.assembler import BadState, StateAssembler, stale_reason
 
 
 def roll_quaternion(orientation):
@@ -60,13 +60,17 @@ class PirateStateNode(object):
                 rospy.logwarn('pirate_state: %s', bad)
             return
         if complete:
-            self._publish(self._snapshot())
+            snap = self._snapshot()
+            if snap.stale and not self._was_stale:
+                rospy.logwarn('pirate_state: %s; state is stale', stale_reason(snap.silent, snap.age))
+            self._was_stale = snap.stale
+            self._publish(snap)
 
     def _check_stale(self, _event):
         snap = self._snapshot()
         if snap.stale and snap.age != float('inf'):
             if not self._was_stale:
-                rospy.logwarn('pirate_state: no Small State for %.2f s; state is stale', snap.age)
+                rospy.logwarn('pirate_state: %s; state is stale', stale_reason(snap.silent, snap.age))
             self._publish(snap)
         self._was_stale = snap.stale
 
@@ -74,7 +78,7 @@ class PirateStateNode(object):
         now = rospy.Time.now()
         state = RobotState(name=snap.name, position=snap.position, effort=snap.effort,
                            orientation=snap.orientation, odometry=snap.odometry,
-                           velocity=snap.velocity, stale=snap.stale)
+                           velocity=snap.velocity, stale=snap.stale, silent_boards=list(snap.silent))
         state.header.stamp = now
         self._state_pub.publish(state)
         joints = JointState(name=snap.name, position=snap.position, effort=snap.effort)

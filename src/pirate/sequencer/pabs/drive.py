@@ -8,10 +8,18 @@ costs millimetres, not centimetres), stop ``stop_lead`` s early and wait
 until the wheels stand still. Only when the robot
 reports no odometry (NaN) does it fall back to the report's time-based drive,
 eq 5.3: x = (v0 + vf) t / 2 with v0 = 0, so t = 2 x / vf.
+
+Bounded independently of the odometry it waits on (issue 14.1): while the
+wheels are commanded, odometry must gain ``no_progress_mm`` every
+``no_progress_s`` of robot time, else the drive aborts (a silent or broken
+odometry board, slipping wheels); and the whole drive never runs longer
+than its planned profile (|distance| at speed, the last part at creep speed)
+plus ``time_margin_s``. A speed whose wheel setpoint
+rounds to 0 counts is refused: the wheels would never turn.
 """
 import math
 
-from pirate.robot import safety
+from pirate.robot import safety, tables, units
 from pirate.sequencer.pabs.base import ALWAYS, END, Pab, PabFailed, StateMachine, Transition
 
 DRIVING = 'driving'
@@ -23,6 +31,7 @@ MACHINE = StateMachine(DRIVING, (
 ))
 
 STANDSTILL_MM_S = 1.0
+MIN_WAIT_S = 0.01       # s: a wait past the deadline still checks its guard once
 
 
 class Drive(Pab):
@@ -35,6 +44,7 @@ class Drive(Pab):
 
     def __init__(self):
         self.start_mm = None
+        self.deadline = None
         self.driven = None
         self.method = 'odometry'
 
@@ -42,6 +52,9 @@ class Drive(Pab):
         speed = goal.speed or guards.drive['default_speed']
         if not safety.drive_speed_ok(speed) or speed <= 0:
             return 'drive speed %.1f mm/s outside (0, %.0f] mm/s' % (speed, safety.DRIVE_MAX_MM_S)
+        if units.mm_s_to_wheel_counts(min(speed, guards.drive['creep_speed'])) == 0:
+            return ('drive speed %.2f mm/s is below one wheel count per PICO sample (%.1f mm/s): '
+                    'the wheels would not turn' % (speed, units.wheel_counts_to_mm_s(1)))
         limit = guards.drive['max_distance']
         if not math.isfinite(goal.distance) or goal.distance == 0 or abs(goal.distance) > limit:
             return 'drive distance %r mm outside [-%.0f, %.0f] mm and not 0' % (goal.distance, limit, limit)
@@ -55,25 +68,30 @@ class Drive(Pab):
         speed = math.copysign(ctx.goal.speed or ctx.guards.drive['default_speed'], distance)
         view = ctx.feed.latest()
         self.start_mm = view.odometry
-        timeout = 2.0 * abs(distance / speed) + ctx.guards.primitive_timeout
+        settings = ctx.guards.drive
+        creep = math.copysign(min(settings['creep_speed'], abs(speed)), distance)
+        fast_mm = abs(distance) - abs(speed) * settings['creep_lead']
+        planned_s = max(fast_mm, 0.0) / abs(speed) + (abs(distance) - max(fast_mm, 0.0)) / abs(creep)
+        self.deadline = view.stamp + planned_s + settings['time_margin_s']   # robot time, both phases
         ctx.prims.drive_at_velocity(speed)
         if math.isnan(view.odometry):
             self.method = 'time (eq 5.3)'
             end = view.stamp + 2.0 * abs(distance) / abs(speed)
             ctx.prims.wait_for('drive by time', lambda v: v.stamp >= end,
-                               'robot time %.1f s (eq 5.3)' % (end - view.stamp), timeout)
+                               'robot time %.1f s (eq 5.3)' % (end - view.stamp),
+                               end - view.stamp + settings['time_margin_s'])
             return
-        settings = ctx.guards.drive
-        creep = math.copysign(min(settings['creep_speed'], abs(speed)), distance)
-        fast_mm = abs(distance) - abs(speed) * settings['creep_lead']
         if fast_mm > 0:
-            self._drive_until(ctx, 'drive', fast_mm, timeout)
+            self._drive_until(ctx, 'drive', fast_mm)
         ctx.prims.drive_at_velocity(creep)
-        self._drive_until(ctx, 'drive creep', abs(distance) - abs(creep) * settings['stop_lead'], timeout)
+        self._drive_until(ctx, 'drive creep', abs(distance) - abs(creep) * settings['stop_lead'])
 
-    def _drive_until(self, ctx, name, covered_mm, timeout):
-        """Wait until the odometry has covered ``covered_mm`` from the start."""
-        ctx.prims.wait_for(name, lambda v: abs(v.odometry - self.start_mm) >= covered_mm,
+    def _drive_until(self, ctx, name, covered_mm):
+        """Wait until the odometry has covered ``covered_mm`` from the start,
+        within what is left of the drive's time bound."""
+        timeout = max(self.deadline - ctx.feed.latest().stamp, MIN_WAIT_S)
+        progress = Progress(ctx.guards.drive, ctx.feed.latest())
+        ctx.prims.wait_for(name, lambda v: progress.check(v) and abs(v.odometry - self.start_mm) >= covered_mm,
                            '|odometry - start| >= %.1f mm' % covered_mm, timeout)
 
     def _stop(self, ctx):
@@ -92,3 +110,23 @@ class Drive(Pab):
         if self.method == 'odometry':
             return 'drove %.1f mm by odometry (asked %.1f mm)' % (self.driven, ctx.goal.distance)
         return 'drove %.1f mm by time, eq 5.3 (no odometry)' % ctx.goal.distance
+
+
+class Progress(object):
+    """Odometry must move while the wheels are commanded, or the drive aborts."""
+
+    def __init__(self, settings, view):
+        self.window_s = settings['no_progress_s']
+        self.min_mm = settings['no_progress_mm']
+        self.mark_mm, self.mark_s = view.odometry, view.stamp
+
+    def check(self, view):
+        """True to go on; PabFailed when the odometry stood still too long."""
+        if abs(view.odometry - self.mark_mm) >= self.min_mm:
+            self.mark_mm, self.mark_s = view.odometry, view.stamp
+        elif view.stamp - self.mark_s > self.window_s:
+            raise PabFailed('no odometry progress for %.1f s with the wheels commanded '
+                            '(odometry %.1f mm, board %d silent or wheels slipping)'
+                            % (view.stamp - self.mark_s, view.odometry, tables.ODOMETRY_BOARD))
+        return True
+

@@ -1,0 +1,297 @@
+"""Issue 14: the faults the robot must survive, in-process.
+
+Each test names the finding it covers; each failed on the code before the
+issue (see notes/issue-14.md). The whole-stack cases run the sequencer
+against the simulated robot (SimHarness); ground truth (the model) is read
+only by the tests, to measure what the robot did.
+"""
+import math
+import os
+import threading
+import time
+
+import pytest
+
+from pirate import paths
+from pirate.panel import config as panel_config
+from pirate.panel.mapper import Mapper
+from pirate.robot import commands, tables, units
+from pirate.sequencer.guards import BadConfig, GuardBook, load_files
+from pirate.sequencer.pabs.drive import Drive
+from pirate.sim.harness import SimHarness
+from pirate.state.assembler import BadState, StateAssembler
+from pirate.state.feed import RobotFeed, RobotView, TimedOut
+
+from test_sequencer_sim import CLAMP_STRAIGHT, DRIVE, run_bounded, wait_robot
+
+SPEEDUP = 40.0
+PANEL_CONFIG = os.path.join(paths.CONFIG_DIR, 'nanokontrol2.yaml')
+HOLD_PWM_INDICES = (1, 2, 3, 6, 7)     # front tilt, Bend I-IV (Table 4.1/4.2)
+WHEELS = 11
+#: Issue 14 goal: a silent board detected within 300 ms (plus the Mega cycle
+#: in which it should have answered, 0.1 s, and one poll) - robot seconds.
+SILENT_DETECTION_ROBOT_S = 0.3 + 0.1 + 0.1
+
+
+def clamped(h):
+    """Clamp Straight from upright; the harness ready for a Drive."""
+    reason, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT))
+    assert reason is None and outcome.status == 'succeeded', (reason, outcome)
+
+
+def run_async(h, goal):
+    """Reserve ``goal`` now and run it in a thread: (thread, result dict)."""
+    reason = h.server.reserve(goal)
+    assert reason is None, reason
+    result = {}
+    thread = threading.Thread(target=lambda: result.update(outcome=h.server.run(goal)), daemon=True)
+    thread.start()
+    return thread, result
+
+
+def assert_hold_on_wire(h):
+    control = h.wires['control'].sent[-1][1]
+    setpoint = h.wires['setpoint'].sent[-1][1]
+    assert all(control[i] == 0 for i in HOLD_PWM_INDICES), control
+    assert all(setpoint[i] == 0 for i in HOLD_PWM_INDICES + (WHEELS,)), setpoint
+
+
+# --- 14.1 a silent board ---------------------------------------------------------
+
+def _all_boards(assembler, now, skip=()):
+    for board in tables.BOARDS:
+        if board not in skip:
+            data = [0] * tables.SMALL_STATE_SIZE
+            if board == tables.IMU_BOARD:
+                y, z = units.roll_to_gravity(math.pi / 2)
+                data[tables.SS_IMU_Y], data[tables.SS_IMU_Z] = int(y), int(z)
+            assembler.update(board, data, now)
+
+
+def test_a_silent_board_makes_the_state_stale_naming_it():
+    """14.1: staleness was the age of the newest message of any board."""
+    assembler = StateAssembler(stale_after=0.3)
+    _all_boards(assembler, 0.0)
+    for cycle in range(1, 6):
+        _all_boards(assembler, cycle * 0.1, skip=(22,))
+    snap = assembler.snapshot(0.5)
+    assert snap.stale and snap.silent == (22,) and snap.age < 0.3
+    _all_boards(assembler, 0.6)
+    assert not assembler.snapshot(0.6).stale
+
+
+@pytest.mark.parametrize('board, goal, phase', [
+    (22, dict(name=DRIVE, distance=400.0, speed=100.0), 'drive'),   # odometry board, mid-Drive
+    (27, dict(name=CLAMP_STRAIGHT), 'clamp rear'),                  # Bend IV, mid-Clamp
+])
+def test_a_board_silenced_mid_pab_aborts_with_the_safe_hold(board, goal, phase):
+    """14.1: with board 22 silent a 50 mm Drive travelled 2 333 mm; a Clamp pressed on."""
+    with SimHarness(speedup=SPEEDUP) as h:
+        if goal['name'] == DRIVE:
+            clamped(h)
+        thread, result = run_async(h, h.goal(**goal))
+        assert wait_robot(h, lambda: h.server.primitive == phase, 20.0), h.server.primitive
+        wait_robot(h, lambda: False, 0.5)                 # well into the phase
+        h.silent.add(board)
+        silenced_at, odometry_at = h.robot_time, h.model.odometry_mm
+        thread.join(30.0)
+        outcome = result['outcome']
+        assert outcome.status == 'aborted' and 'board %d silent' % board in outcome.message, outcome
+        assert_hold_on_wire(h)
+        hold_at = h.robot_time
+        assert hold_at - silenced_at <= SILENT_DETECTION_ROBOT_S + 0.2, hold_at - silenced_at
+        assert wait_robot(h, lambda: abs(h.model.wheel_mm_s) < 1.0, 2.0)
+        assert abs(h.model.odometry_mm - odometry_at) <= 100.0     # 0.4 s at 100 mm/s at most
+        reason = h.server.reserve(h.goal(**goal))
+        assert reason and 'board %d silent' % board in reason, reason
+
+
+def test_drive_without_odometry_progress_stops():
+    """14.1: odometry frozen (board answering, encoder dead): Drive ran away."""
+    with SimHarness(speedup=SPEEDUP) as h:
+        clamped(h)
+        real = h.model.small_state
+        frozen = {}
+
+        def small_state(board):
+            data = real(board)
+            if board == tables.ODOMETRY_BOARD and 'odometry' in frozen:
+                data[tables.SS_ODOMETRY] = frozen['odometry']
+            return data
+        h.model.small_state = small_state
+        thread, result = run_async(h, h.goal(DRIVE, distance=400.0, speed=100.0))
+        assert wait_robot(h, lambda: h.server.primitive == 'drive', 20.0)
+        frozen['odometry'] = real(tables.ODOMETRY_BOARD)[tables.SS_ODOMETRY]
+        frozen_at, travel_at = h.robot_time, h.model.odometry_mm
+        thread.join(30.0)
+        outcome = result['outcome']
+        assert outcome.status == 'aborted' and 'no odometry progress' in outcome.message, outcome
+        assert h.robot_time - frozen_at <= 0.4 + 0.3, h.robot_time - frozen_at
+        assert_hold_on_wire(h)
+        assert h.model.odometry_mm - travel_at <= 100.0
+
+
+def test_drive_never_runs_longer_than_its_profile_plus_margin():
+    """14.1: the drive's bound was 2 x distance/speed + 15 s per phase, whatever happened.
+
+    Here the odometry reports half the true travel (a slipping encoder): progress
+    is seen, so only the time bound can stop it."""
+    book = GuardBook(*load_files())
+    with SimHarness(speedup=SPEEDUP) as h:
+        clamped(h)
+        h.model.small_state = _slow_odometry(h.model.small_state, 0.5)    # half the true travel
+        start = h.robot_time
+        reason, outcome = run_bounded(h, h.goal(DRIVE, distance=200.0, speed=100.0))
+        assert reason is None and outcome.status == 'aborted', outcome
+        drive = book.common['drive']
+        fast_mm = 200.0 - 100.0 * drive['creep_lead']
+        bound = fast_mm / 100.0 + (200.0 - fast_mm) / drive['creep_speed'] + drive['time_margin_s']
+        assert h.robot_time - start <= bound + 0.5, h.robot_time - start
+
+
+def _slow_odometry(real, factor):
+    start = {}
+
+    def small_state(board):
+        data = real(board)
+        if board == tables.ODOMETRY_BOARD:
+            start.setdefault('odo', data[tables.SS_ODOMETRY])
+            data[tables.SS_ODOMETRY] = int(start['odo'] + (data[tables.SS_ODOMETRY] - start['odo']) * factor)
+        return data
+    return small_state
+
+
+# --- 14.4 Play ----------------------------------------------------------------------
+
+def test_play_does_not_move_a_position_mode_joint():
+    """14.4: Play turned the rotation from 0.30 rad to 0.00 rad."""
+    with SimHarness(speedup=SPEEDUP, joints={'rotation': 0.3}) as h:
+        mapper = Mapper(panel_config.load(PANEL_CONFIG), h.setpoint, h.control, h.limit,
+                        _NoPab(), lambda *a: None, lambda text: None, time.monotonic)
+        assert h.control.mode_of('rotation') == 'position'
+        mapper.handle(41, 127)      # Play
+        wait_robot(h, lambda: False, 1.5)
+        assert h.model.running
+        assert h.model.joint_angles['rotation'] == pytest.approx(0.3, abs=0.01)
+
+
+class _NoPab(object):
+    def send_goal(self, *args):
+        return False, 'no server'
+
+    def cancel(self):
+        pass
+
+    def is_active(self):
+        return False
+
+
+# --- 14.5 a bad sensor reading ---------------------------------------------------------
+
+@pytest.mark.parametrize('board, element, value', [
+    (24, tables.SS_ANGLE, 32767),           # rotation 15.36 rad
+    (22, tables.SS_VELOCITY, 30000),        # wheel speed
+    (23, tables.SS_TORQUE, 4000),           # torque controller output
+    (22, tables.SS_ANGLE, 4000),            # beyond an AS5055
+])
+def test_an_impossible_reading_is_dropped(board, element, value):
+    """14.5: board 24's angle 32767 was accepted; the cancel's hold drove the rotation to +0.7 rad."""
+    assembler = StateAssembler()
+    _all_boards(assembler, 0.0)
+    data = [0] * tables.SMALL_STATE_SIZE
+    data[element] = value
+    with pytest.raises(BadState):
+        assembler.update(board, data, 0.05)
+    assert max(abs(p) for p in assembler.snapshot(0.05).position) < 0.01
+
+
+def test_the_cancel_hold_keeps_the_rotation_when_board_24_lies():
+    """14.5 end to end: a bogus rotation reading never steers the hold."""
+    with SimHarness(speedup=SPEEDUP) as h:
+        thread, _ = run_async(h, h.goal(CLAMP_STRAIGHT))
+        assert wait_robot(h, lambda: h.server.primitive == 'clamp rear', 20.0)
+        real = h.model.small_state
+        h.model.small_state = lambda b: (real(b)[:3] + [32767] + real(b)[4:]) if b == 24 else real(b)
+        wait_robot(h, lambda: False, 0.3)
+        h.server.cancel()
+        thread.join(30.0)
+        wait_robot(h, lambda: False, 1.0)
+        assert abs(h.model.joint_angles['rotation']) < 0.05
+
+
+# --- 14.6 every time limit independent of feedback -----------------------------------------
+
+@pytest.mark.parametrize('key, value', [
+    ('feedback_timeout', 1e9), ('feedback_timeout', 'abc'), ('primitive_timeout', -1.0),
+    ('wall_timeout_factor', None), ('max_primitives', True)])
+def test_safety_settings_are_range_checked_at_load(key, value):
+    """14.6: feedback_timeout 1e9 was accepted; a string gave 866 tracebacks."""
+    tables_, common = load_files()
+    common[key] = value
+    with pytest.raises(BadConfig, match=key):
+        GuardBook(tables_, common)
+
+
+def test_drive_settings_are_range_checked_too():
+    tables_, common = load_files()
+    common['drive']['no_progress_s'] = 100.0
+    with pytest.raises(BadConfig, match='drive/no_progress_s'):
+        GuardBook(tables_, common)
+
+
+def test_a_wait_ends_on_the_wall_clock_when_robot_time_stops():
+    """14.6: primitive timeouts ran on state stamps only; a stuck clock kept a goal 40 s."""
+    feed = RobotFeed(feedback_timeout=0.3, wall_factor=2.0)
+    stop = threading.Event()
+
+    def robot():        # states keep arriving, their robot time never advances
+        while not stop.is_set():
+            feed.push(RobotView({}, math.pi / 2, 0.0, 0.0, 5.0))
+            stop.wait(0.01)
+    threading.Thread(target=robot, daemon=True).start()
+    start = time.monotonic()
+    try:
+        with pytest.raises(TimedOut, match='wall clock'):
+            feed.wait_until(lambda view: False, 0.2, 'never')
+    finally:
+        stop.set()
+    assert time.monotonic() - start < 5.0
+
+
+# --- 14.8 the smaller points ------------------------------------------------------------------
+
+@pytest.mark.parametrize('speed', [0.5, 1.0])
+def test_a_drive_the_wheels_cannot_do_is_refused(speed):
+    """14.8: a Drive at <= 1 mm/s was accepted and hung (the wheel setpoint rounds to 0)."""
+    guards = GuardBook(*load_files()).for_diameter(90)
+    goal = type('Goal', (), dict(name=DRIVE, pipe_diameter=90, distance=50.0, speed=speed, option=0))
+    reason = Drive().check(goal, None, guards)
+    assert reason and 'would not turn' in reason
+    assert Drive().check(type('Goal', (), dict(goal.__dict__, speed=20.0)), None, guards) is None
+
+
+def test_stop_in_manual_mode_cancels_a_pab_started_by_another_client():
+    """14.8: Stop in Manual did not cancel a PAB sent over actionlib (15 s timeout)."""
+    wires = {k: [] for k in ('s', 'c', 'l')}
+    control = commands.Control(type('W', (), {'publish': wires['c'].append})(), list)
+    setpoint = commands.Setpoint(type('W', (), {'publish': wires['s'].append})(), list, control)
+    limit = commands.Limit(type('W', (), {'publish': wires['l'].append})(), list)
+    pab = _ActivePab()
+    mapper = Mapper(panel_config.load(PANEL_CONFIG), setpoint, control, limit, pab,
+                    lambda *a: None, lambda text: None, time.monotonic)
+    assert mapper.operation_mode == panel_config.MANUAL
+    mapper.handle(41, 127)
+    mapper.handle(41, 0)
+    mapper.handle(42, 127)      # Stop
+    assert pab.cancels == 1
+
+
+class _ActivePab(_NoPab):
+    def __init__(self):
+        self.cancels = 0
+
+    def cancel(self):
+        self.cancels += 1
+
+    def is_active(self):
+        return True
