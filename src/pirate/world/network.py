@@ -19,6 +19,8 @@ format"); in short::
       - {type: reduction, at_mm: 900, diameter_mm: 80}
       - {type: debris, at_mm: 300, size_mm: 6}
     start: {at_mm: 200}              # where the robot's middle starts
+    points:                          # named places on the path (the mission's map)
+      - {name: launch_pit, at_mm: 200}
 
 Each piece has an entry frame; its exit frame is where the next piece
 starts. Frames are (origin, 3x3 rotation as rows of the x/y/z axes) in
@@ -79,9 +81,10 @@ def turned(frame, turn):
 class Network(object):
     """Pieces and obstacles in travel order, laid out from the origin."""
 
-    def __init__(self, name, pieces, obstacles, start_m, source='<world>'):
+    def __init__(self, name, pieces, obstacles, start_m, source='<world>', points=None):
         self.name, self.pieces, self.obstacles = name, pieces, obstacles
         self.start_m, self.source = start_m, source
+        self.points = dict(points or {})    # name -> metres along the path
 
     @property
     def length(self):
@@ -122,7 +125,7 @@ def build(data, source='<world>'):
     """Check ``data`` (the parsed YAML) and lay the network out."""
     if not isinstance(data, dict):
         raise WorldError('%s: a world is a mapping with pieces, got %r' % (source, type(data).__name__))
-    unknown = set(data) - {'name', 'diameter_mm', 'pieces', 'obstacles', 'start'}
+    unknown = set(data) - {'name', 'diameter_mm', 'pieces', 'obstacles', 'start', 'points'}
     if unknown:
         raise WorldError('%s: unknown top-level key(s) %s' % (source, sorted(unknown)))
     default_mm = _diameter(data.get('diameter_mm', 90), source, 'diameter_mm')
@@ -137,7 +140,28 @@ def build(data, source='<world>'):
     start_m = float(start.get('at_mm', 200)) / 1000.0
     if not 0.0 < start_m < total or pieces[_piece_at(pieces, start_m)].kind != 'straight':
         raise WorldError('%s: start: at_mm %.0f is not inside a straight piece' % (source, start_m * 1000))
-    return Network(data.get('name', source), pieces, obstacles, start_m, source)
+    points = _points(data.get('points') or [], total, source)
+    return Network(data.get('name', source), pieces, obstacles, start_m, source, points)
+
+
+def _points(specs, total_m, source):
+    """Named places on the path: {name: metres along}; names unique, inside."""
+    if not isinstance(specs, list):
+        raise WorldError('%s: points: a list of {name, at_mm} is needed' % source)
+    points = {}
+    for index, spec in enumerate(specs):
+        where = 'points[%d]' % index
+        if not isinstance(spec, dict) or set(spec) != {'name', 'at_mm'}:
+            raise WorldError('%s: %s: a point is {name: ..., at_mm: ...}, got %r' % (source, where, spec))
+        name = str(spec['name'])
+        if name in points:
+            raise WorldError('%s: %s: point %r is named twice' % (source, where, name))
+        at_m = float(spec['at_mm']) / 1000.0
+        if not 0.0 <= at_m <= total_m:
+            raise WorldError('%s: %s (%s): at_mm %.0f is outside the network (0..%.0f mm)'
+                             % (source, where, name, at_m * 1000, total_m * 1000))
+        points[name] = at_m
+    return points
 
 
 def _piece_at(pieces, along_m):

@@ -1,0 +1,261 @@
+"""Mission executive: runs a route's plan PAB by PAB, the operator in charge.
+
+What a gas-network inspector expects of it (issue 11):
+
+- **per-step policy**: a PAB that aborts is retried up to N times (the
+  mission's ``policy``, per PAB name, default in config/supervisory.yaml),
+  re-establishing the clamp the step starts from first ("re-clamp and retry
+  a bend"); then the mission stops safe. A goal cancelled by the operator
+  is never retried; a refused goal is not either (retrying cannot help);
+- **localisation**: every report moves the estimate along the map; every
+  junction a PAB finds re-anchors it, and a junction where the map has none,
+  or none where it has one, stops the mission (pirate.supervisory.localiser);
+- **autonomy levels** (as FlexBE's, set from the panel): ``full`` runs every
+  step, ``confirm`` waits before each PAB for the operator's confirmation,
+  ``manual`` only shows the plan. The level may change at any time; it
+  applies from the next step;
+- **pause / resume**: pause cancels the running goal (the server leaves the
+  robot in its safe hold) and waits; resume re-clamps if the robot is no
+  longer clamped and runs the same step again, a Drive only for what is
+  left of it. Cancel always ends the mission.
+
+Pure: the robot is an object with ``run(step) -> Report`` (blocking until
+the goal ends) and ``cancel()`` (any thread); the ROS edge provides one over
+actionlib. Operator calls (:meth:`pause`, :meth:`resume`, :meth:`cancel`,
+:meth:`confirm`, :meth:`set_level`) come from any thread.
+"""
+import collections
+import threading
+
+from pirate.supervisory.localiser import MapMismatch
+
+FULL, CONFIRM, MANUAL = 'full', 'confirm', 'manual'
+LEVELS = (FULL, CONFIRM, MANUAL)
+
+#: What one goal came to: status succeeded / aborted / preempted / rejected;
+#: odometry (mm) at its end; where a junction PAB found its junction (mm of
+#: odometry) or None; ``junction_missing`` when it searched and found none;
+#: ``clamped``: the robot's sensed clamp state afterwards.
+Report = collections.namedtuple('Report', 'status message odometry_mm junction_odometry_mm junction_missing clamped')
+#: Progress for the operator.
+Progress = collections.namedtuple('Progress', 'step steps pab along_m time_left_s level state waiting_for')
+#: How the mission ended: succeeded / aborted / cancelled / mismatch / manual.
+Outcome = collections.namedtuple('Outcome', 'status message log')
+
+
+class Stop(Exception):
+    """The mission ends here: status and reason."""
+
+    def __init__(self, status, message):
+        Exception.__init__(self, message)
+        self.status = status
+
+
+class Executive(object):
+    """Runs one plan; one instance per mission."""
+
+    def __init__(self, route_plan, robot, localiser, settings, policy=None, level=FULL,
+                 progress=None, out=print):
+        if level not in LEVELS:
+            raise ValueError('autonomy level %r is not one of %s' % (level, ', '.join(LEVELS)))
+        self.plan, self.robot, self.localiser = route_plan, robot, localiser
+        self.settings, self.policy = settings, dict(policy or {})
+        self.level, self.log = level, []
+        self._progress, self._out = progress or (lambda p: None), out
+        self._cond = threading.Condition()
+        self._paused = self._cancelled = self._running = False
+        self._confirmed = -1
+        self.step_index, self.state, self.waiting_for = 0, 'ready', ''
+
+    # --- operator side, any thread ----------------------------------------
+    def pause(self):
+        """Hold the robot safe and wait for :meth:`resume`."""
+        with self._cond:
+            self._paused = True
+            running = self._running
+            self._cond.notify_all()
+        self._say('pause asked')
+        if running:
+            self.robot.cancel()
+
+    def resume(self):
+        """Go on with the step that was paused."""
+        with self._cond:
+            self._paused = False
+            self._cond.notify_all()
+        self._say('resume asked')
+
+    def cancel(self):
+        """End the mission: the running goal is cancelled, nothing else runs."""
+        with self._cond:
+            self._cancelled = True
+            running = self._running
+            self._cond.notify_all()
+        self._say('cancel asked')
+        if running:
+            self.robot.cancel()
+
+    def confirm(self):
+        """The operator confirms the step that waits (level ``confirm``)."""
+        with self._cond:
+            self._confirmed = self.step_index
+            self._cond.notify_all()
+
+    def set_level(self, level):
+        """Change the autonomy level; applies from the next step."""
+        if level not in LEVELS:
+            raise ValueError('autonomy level %r is not one of %s' % (level, ', '.join(LEVELS)))
+        with self._cond:
+            self.level = level
+            self._cond.notify_all()
+        self._say('autonomy level: %s' % level)
+
+    # --- the mission thread -----------------------------------------------
+    def run(self):
+        """Run the plan to its :data:`Outcome`."""
+        steps = self.plan.steps
+        if self.level == MANUAL:
+            self._say('manual: the plan is shown, nothing runs')
+            return self._end('manual', 'plan shown; nothing run (level manual)')
+        try:
+            while self.step_index < len(steps):
+                self._run_step(steps[self.step_index])
+                self.step_index += 1
+        except Stop as stop:
+            return self._end(stop.status, str(stop))
+        return self._end('succeeded', '%d PABs, at %.0f mm' % (len(steps), self.localiser.along_m * 1000))
+
+    def _run_step(self, step):
+        retries_left = self._retries(step)
+        resume_with_clamp = False
+        while True:
+            self._await_go(step)
+            if resume_with_clamp:
+                self._reclamp(step, 'resume')
+            todo = self._remaining(step)
+            if todo is None:
+                with self._cond:
+                    self._running = False
+                return None
+            report = self._goal(todo)
+            if report.status == 'succeeded':
+                return self._arrived(step, report)
+            resume_with_clamp = False
+            if self._cancelled:
+                raise Stop('cancelled', 'cancelled by the operator during step %d (%s)'
+                           % (self.step_index + 1, step.pab))
+            if report.status == 'preempted' and self._paused:
+                resume_with_clamp = not report.clamped and step.holds is not None
+                continue
+            if report.status == 'preempted':
+                raise Stop('cancelled', 'step %d (%s) was cancelled outside the mission: %s'
+                           % (self.step_index + 1, step.pab, report.message))
+            if report.junction_missing:
+                raise Stop('mismatch', str(self.localiser.junction_missing(step.junction, abs(step.distance_mm))))
+            if report.status == 'rejected' or retries_left <= 0:
+                raise Stop('aborted', 'step %d (%s) %s: %s' % (self.step_index + 1, step.pab, report.status,
+                                                              report.message))
+            retries_left -= 1
+            self._say('step %d (%s) aborted: %s; retrying (%d left)'
+                      % (self.step_index + 1, step.pab, report.message, retries_left))
+            self._reclamp(step, 'retry')
+
+    def _await_go(self, step):
+        """Wait while paused or unconfirmed; :class:`Stop` on cancel."""
+        with self._cond:
+            while not self._cancelled:
+                if self._paused:
+                    self._set_waiting('resume (paused)')
+                elif self.level == CONFIRM and self._confirmed != self.step_index:
+                    self._set_waiting('confirmation of step %d (%s)' % (self.step_index + 1, step.pab))
+                else:
+                    self._set_waiting('')
+                    self._running = True
+                    return
+                self._cond.wait()
+        raise Stop('cancelled', 'cancelled by the operator before step %d (%s)' % (self.step_index + 1, step.pab))
+
+    def _set_waiting(self, what):
+        changed = what != self.waiting_for
+        self.waiting_for = what
+        self.state = 'waiting' if what else 'running'
+        if changed:
+            self._publish(self.plan.steps[self.step_index])
+            if what:
+                self._say('waiting for %s' % what)
+
+    def _goal(self, step):
+        """Run one goal and move the estimate by its odometry."""
+        self._say('step %d/%d: %s%s%s, %s' % (
+            self.step_index + 1, len(self.plan.steps), step.pab, ' %s' % step.option if step.option else '',
+            ' %+.0f mm' % step.distance_mm if step.distance_mm else '', step.note))
+        self._publish(step)
+        try:
+            report = self.robot.run(step)
+        finally:
+            with self._cond:
+                self._running = False
+        if report.odometry_mm is not None:
+            self.localiser.update(report.odometry_mm)
+        self._say('  %s: %s (at %.0f mm)' % (report.status, report.message, self.localiser.along_m * 1000))
+        return report
+
+    def _arrived(self, step, report):
+        if step.junction is None:
+            return
+        if report.junction_odometry_mm is None:
+            raise Stop('mismatch', str(self.localiser.junction_missing(step.junction, abs(step.distance_mm))))
+        try:
+            mapped = self.localiser.junction_found(step.junction, report.junction_odometry_mm,
+                                                   1 if step.distance_mm > 0 else -1)
+        except MapMismatch as mismatch:
+            raise Stop('mismatch', str(mismatch))
+        self._say('  %s found where the map has it: re-anchored at %.0f mm' % (step.junction.name, mapped * 1000))
+        self.localiser.update(report.odometry_mm)
+
+    def _reclamp(self, step, why):
+        """Before a retry or a resume: the clamp the step starts from."""
+        if step.holds is None:
+            return
+        clamp = step._replace(pab=step.holds.pab, option=step.holds.side, distance_mm=0.0, junction=None,
+                              note='re-clamp before the %s of step %d' % (why, self.step_index + 1))
+        report = self._goal(clamp)
+        if report.status != 'succeeded':
+            raise Stop('aborted', 're-clamp before the %s of step %d failed: %s'
+                       % (why, self.step_index + 1, report.message))
+
+    def _remaining(self, step):
+        """A Drive goes from where the robot is estimated to be to the step's
+        end: only what is left of it when resumed or retried (None: nothing)."""
+        if step.pab != 'DRIVE':
+            return step
+        left_mm = (step.end_m - self.localiser.along_m) * 1000.0
+        return step._replace(distance_mm=left_mm) if abs(left_mm) >= self.settings['min_drive_mm'] else None
+
+    def _retries(self, step):
+        default = self.policy.get('default', self.settings['policy'])
+        return int(self.policy.get(step.pab, default).get('retries', 0))
+
+    # --- telling the operator ---------------------------------------------
+    def time_left_s(self):
+        """Rough time left: each remaining PAB's typical duration, drives by speed."""
+        typical = self.settings['typical_s']
+        total = 0.0
+        for step in self.plan.steps[self.step_index:]:
+            total += typical.get(step.pab, 0.0)
+            if step.pab == 'DRIVE' and step.speed_mm_s:
+                total += abs(step.distance_mm) / step.speed_mm_s
+        return total
+
+    def _publish(self, step):
+        self._progress(Progress(self.step_index + 1, len(self.plan.steps), step.pab, self.localiser.along_m,
+                                self.time_left_s(), self.level, self.state, self.waiting_for))
+
+    def _say(self, text):
+        self.log.append(text)
+        self._out(text)
+
+    def _end(self, status, message):
+        self.state = status
+        self._say('mission %s: %s' % (status, message))
+        return Outcome(status, message, list(self.log))

@@ -1,0 +1,64 @@
+"""Where the robot is on the map: odometry, re-anchored at every junction.
+
+Wheel odometry drifts (slip, the wheels' path round a bend is not the
+pipe's axis), so the estimate is re-anchored where the map is certain: at
+a junction a junction PAB has detected. A junction found where the map and
+odometry do not put one (farther than the tolerance), or none found where
+the map has one, means the map disagrees with the pipe: :class:`MapMismatch`,
+and the mission stops safe.
+
+Positions are metres along the map's path of the robot's middle (as in
+pirate.supervisory.planner); odometry is the robot's wheel odometry in mm,
+growing when it drives forward (it never turns round, so the way back is
+negative odometry, SPEC 6). Pure: no ROS.
+"""
+import collections
+
+#: One junction's check: the junction, where odometry put the robot (m) and where the map does (m).
+Fix = collections.namedtuple('Fix', 'junction estimated_m mapped_m')
+
+
+class MapMismatch(RuntimeError):
+    """The pipe is not what the map says."""
+
+
+class Localiser(object):
+    """Dead reckoning along the path, anchored at the start and at each junction found."""
+
+    def __init__(self, start_m, settings):
+        self.anchor_m, self.anchor_odometry = start_m, None
+        self.along_m = start_m
+        self.fixes = []
+        self._robot = settings['robot']
+        self._tolerance_m = settings['locate_tolerance_mm'] / 1000.0
+        self._drift = settings['odometry_drift']
+
+    def update(self, odometry_mm):
+        """A new odometry reading: the estimate follows it from the anchor."""
+        if self.anchor_odometry is None:
+            self.anchor_odometry = odometry_mm
+        self.along_m = self.anchor_m + (odometry_mm - self.anchor_odometry) / 1000.0
+        return self.along_m
+
+    def junction_found(self, junction, odometry_mm, sign):
+        """A junction PAB detected ``junction`` (its leading end lost the wall)
+        at ``odometry_mm``, driving forward (``sign`` 1) or back (-1).
+        Re-anchor there, or raise :class:`MapMismatch`."""
+        estimated = self.update(odometry_mm)
+        if sign > 0:
+            mapped = junction.entry_m - self._robot['front_mm'] / 1000.0
+        else:
+            mapped = junction.exit_m + self._robot['rear_mm'] / 1000.0
+        allowed = self._tolerance_m + self._drift * abs(estimated - self.anchor_m)
+        if abs(estimated - mapped) > allowed:
+            raise MapMismatch('%s found with the robot at %.0f mm, the map has it at %.0f mm '
+                              '(more than %.0f mm apart)' % (junction.name, estimated * 1000, mapped * 1000,
+                                                             allowed * 1000))
+        self.fixes.append(Fix(junction.name, estimated, mapped))
+        self.anchor_m, self.anchor_odometry, self.along_m = mapped, odometry_mm, mapped
+        return mapped
+
+    @staticmethod
+    def junction_missing(junction, searched_mm):
+        """The map's junction was not found within the search distance."""
+        return MapMismatch('%s not found within %.0f mm of where the map has it' % (junction.name, searched_mm))

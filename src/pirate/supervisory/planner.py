@@ -1,0 +1,172 @@
+"""Route planner: from named points on a pipe map to the PAB goals that get there.
+
+The Supervisory layer (report 3.2) thinks in routes ("from the launch pit,
+to the T-joint, right, on to the target, and back"); the Pirate Server runs
+PABs. :func:`plan` turns one into the other, before anything moves, so the
+plan can be printed and checked (``rosrun pirate plan_mission MAP FROM TO``):
+
+- clamp before each junction the way the junction needs
+  (:func:`pirate.sequencer.junctions.required_clamp`), and once at the start;
+- drive each segment by distance, stopping the leading end ``approach_mm``
+  before the junction (drives longer than one Drive goal may go are split);
+- take each mitre bend / T-joint in the direction the route goes; backwards
+  (rear first) on the way back, with a negative search distance;
+- drive on to the target; home at the end.
+
+Positions are metres along the map's path (pirate.world.network), of the
+robot's middle. Every step says where it starts, where it should end and
+which junction it should meet, which is what localisation checks against.
+Pure: no ROS; the map, the settings (config/supervisory.yaml) and the
+Drive limit (config/sequencer.yaml) are passed in.
+"""
+import collections
+
+from pirate.sequencer.junctions import STRAIGHT_CLAMP, required_clamp
+
+#: One junction of the map, as the route meets it.
+Junction = collections.namedtuple('Junction', 'name kind direction open_side entry_m exit_m diameter_mm')
+#: One PAB goal of the plan. ``option``: None or LEFT/RIGHT/UP/DOWN/STRAIGHT;
+#: ``distance_mm`` signed (Drive: how far; junction PABs: how far to search);
+#: ``junction``: the :data:`Junction` a junction PAB should meet (else None);
+#: ``holds``: the clamp the robot holds when the step starts (None: none yet),
+#: which a retry or a resume re-establishes first.
+Step = collections.namedtuple('Step', 'pab option distance_mm speed_mm_s pipe_diameter start_m end_m '
+                                      'junction note holds')
+Plan = collections.namedtuple('Plan', 'map_name waypoints steps')
+
+
+class PlanError(ValueError):
+    """A route the map cannot serve, with the reason."""
+
+
+def junctions(network):
+    """The map's junctions in path order, named mitre_1, tee_1, ..."""
+    found, along, count = [], 0.0, collections.Counter()
+    for piece in network.pieces:
+        if piece.kind in ('mitre', 'tee'):
+            count[piece.kind] += 1
+            direction, open_side = _crossing(piece)
+            found.append(Junction('%s_%d' % (piece.kind, count[piece.kind]), piece.kind, direction, open_side,
+                                  along, along + piece.length, round(piece.diameter * 1000)))
+        along += piece.length
+    return found
+
+
+def _crossing(piece):
+    """(direction taken, open side) of a junction on the path: the same both
+    ways in the robot's own frame (it drives back without turning round)."""
+    if piece.kind == 'mitre':
+        return piece.spec['turn'], None
+    if piece.spec['enter'] == 'run':
+        return 'straight', piece.spec['side']
+    return piece.spec['side'], 'straight'
+
+
+def plan(network, waypoints, settings, max_drive_mm, speed_mm_s=None, home=True):
+    """A :data:`Plan` visiting ``waypoints`` (point names) in order."""
+    if len(waypoints) < 2:
+        raise PlanError('a route needs at least two points (from, to), got %r' % (waypoints,))
+    places = [_place(network, name) for name in waypoints]
+    planner = _Planner(network, settings, max_drive_mm, speed_mm_s or settings['speed_mm_s'])
+    for (name_a, a), (name_b, b) in zip(zip(waypoints, places), zip(waypoints[1:], places[1:])):
+        if abs(b - a) * 1000 < settings['min_drive_mm']:
+            raise PlanError('%s and %s are the same place; nothing to drive' % (name_a, name_b))
+        planner.leg(name_a, a, name_b, b)
+    if home:
+        planner.add('HOME', None, 0.0, planner.at, planner.at, None, 'unclamp at %s' % waypoints[-1])
+    return Plan(network.name, list(waypoints), planner.steps)
+
+
+def _place(network, name):
+    if name not in network.points:
+        raise PlanError('no point %r on map %s (points: %s)'
+                        % (name, network.name, ', '.join(sorted(network.points)) or 'none'))
+    along = network.points[name]
+    kind = network.pieces[network.locate(along)[0]].kind
+    if kind != 'straight':
+        raise PlanError('point %s (%.0f mm) lies in a %s, not in a straight pipe' % (name, along * 1000, kind))
+    return along
+
+
+class _Planner(object):
+    """Accumulates steps; knows where the robot is and how it is clamped."""
+
+    def __init__(self, network, settings, max_drive_mm, speed):
+        self.network, self.settings, self.speed = network, settings, speed
+        self.max_drive_mm = max_drive_mm
+        self.junctions = junctions(network)
+        self.steps, self.clamp, self.at = [], None, None
+
+    def add(self, pab, option, distance_mm, start_m, end_m, junction, note):
+        diameter = round(self.network.diameter_at(start_m) * 1000)
+        self.steps.append(Step(pab, option, distance_mm, self.speed if pab != 'HOME' else 0.0,
+                               diameter, start_m, end_m, junction, note, self.clamp))
+
+    def leg(self, name_a, a, name_b, b):
+        """Steps from ``a`` to ``b`` (metres along), through the junctions between."""
+        if self.at is None:
+            self.at = a
+        sign = 1 if b > a else -1
+        crossed = [j for j in self.junctions if min(a, b) < j.entry_m and j.exit_m < max(a, b)]
+        for junction in (crossed if sign > 0 else reversed(crossed)):
+            self._take(junction, sign, name_a)
+        if self.clamp is None:
+            self._clamp(STRAIGHT_CLAMP, 'before driving to %s' % name_b)
+        to_go_mm = (b - self.at) * 1000
+        if to_go_mm * sign < -self.settings['min_drive_mm']:
+            raise PlanError('%s lies within %.0f mm after %s: the robot ends past it'
+                            % (name_b, self.settings['clear_mm'], crossed[-1 if sign > 0 else 0].name))
+        self._drive(to_go_mm, 'to %s' % name_b)
+
+    def _take(self, junction, sign, came_from):
+        self._check_takeable(junction)
+        self._clamp(required_clamp(junction.kind, junction.direction, junction.open_side),
+                    'for %s (%s %s)' % (junction.name, junction.kind, junction.direction))
+        robot = self.settings['robot']
+        lead_mm = robot['front_mm'] if sign > 0 else robot['rear_mm']
+        edge_m = junction.entry_m if sign > 0 else junction.exit_m
+        stop_m = edge_m - sign * (lead_mm + self.settings['approach_mm']) / 1000.0
+        if (stop_m - self.at) * sign < -self.settings['min_drive_mm'] / 1000.0:
+            raise PlanError('%s is too close to %s: the robot\'s %s end would already be within %.0f mm of it'
+                            % (came_from, junction.name, 'front' if sign > 0 else 'rear',
+                               self.settings['approach_mm']))
+        self._drive((stop_m - self.at) * 1000, 'up to %s' % junction.name)
+        after_m = (junction.exit_m if sign > 0 else junction.entry_m) + sign * self.settings['clear_mm'] / 1000.0
+        pab = 'MITRE_BEND' if junction.kind == 'mitre' else 'T_JOINT'
+        self.add(pab, junction.direction.upper(), sign * self.settings['search_mm'], self.at, after_m,
+                 junction, '%s %s%s' % (junction.name, junction.direction, '' if sign > 0 else ', rear first'))
+        self.at, self.clamp = after_m, STRAIGHT_CLAMP
+
+    def _check_takeable(self, junction):
+        can = self.settings['takeable'].get(junction.diameter_mm, {}).get(junction.kind, [])
+        if junction.direction not in can:
+            raise PlanError('%s (%s, %s) cannot be taken in a %d mm pipe (takeable: %s)'
+                            % (junction.name, junction.kind, junction.direction, junction.diameter_mm,
+                               ', '.join(can) or 'nothing'))
+
+    def _clamp(self, clamp, why):
+        if clamp != self.clamp:
+            self.add(clamp.pab, clamp.side, 0.0, self.at, self.at, None, 'clamp %s' % why)
+            self.clamp = clamp
+
+    def _drive(self, distance_mm, why):
+        if abs(distance_mm) < self.settings['min_drive_mm']:
+            return
+        pieces = int(abs(distance_mm) // self.max_drive_mm) + 1
+        for _ in range(pieces):
+            part_mm = distance_mm / pieces
+            self.add('DRIVE', None, part_mm, self.at, self.at + part_mm / 1000.0, None, 'drive %s' % why)
+            self.at += part_mm / 1000.0
+
+
+def format_plan(route_plan):
+    """The plan as lines for the operator, one per PAB goal."""
+    lines = ['plan on %s: %s (%d PABs)' % (route_plan.map_name, ' -> '.join(route_plan.waypoints),
+                                           len(route_plan.steps))]
+    for number, step in enumerate(route_plan.steps, 1):
+        option = ' %s' % step.option if step.option else ''
+        distance = ' %+.0f mm' % step.distance_mm if step.distance_mm else ''
+        lines.append('%3d. %-15s%-9s%-10s %3d mm pipe  at %6.0f -> %6.0f mm   %s'
+                     % (number, step.pab, option, distance, step.pipe_diameter,
+                        step.start_m * 1000, step.end_m * 1000, step.note))
+    return lines

@@ -1,0 +1,226 @@
+"""Mission executive and localisation (pirate.supervisory.executive,
+.localiser) against a scripted robot that moves along the map.
+
+The fake robot knows the true pipe (junctions possibly elsewhere than the
+map says) and reports only what the real one would: odometry and where a
+junction PAB found its junction. Threads meet on events, never on sleeps."""
+import os
+import threading
+
+import pytest
+import yaml
+
+from pirate import paths
+from pirate.supervisory import executive as ex
+from pirate.supervisory import planner
+from pirate.supervisory.localiser import Localiser
+from pirate.world import network
+
+with open(os.path.join(paths.CONFIG_DIR, 'supervisory.yaml')) as _f:
+    SETTINGS = yaml.safe_load(_f)
+WAIT_S = 10.0
+MAP = network.build({'name': 'test', 'diameter_mm': 90, 'pieces': [
+    {'type': 'straight', 'length_mm': 2000}, {'type': 'mitre', 'turn': 'left'},
+    {'type': 'straight', 'length_mm': 2000}, {'type': 'cap'}],
+    'points': [{'name': 'pit', 'at_mm': 300}, {'name': 'target', 'at_mm': 3000}]})
+
+
+class FakeRobot(object):
+    """Moves a true position along the path; junctions at their mapped place + ``shift_mm``."""
+
+    def __init__(self, start_m, shift_mm=0.0, fail=None, hold_step=None):
+        self.true_m, self.start_m, self.shift_m = start_m, start_m, shift_mm / 1000.0
+        self.fail = dict(fail or {})          # pab -> list of statuses to return first
+        self.goals = []
+        self.hold_step = hold_step            # a pab that blocks until cancelled (once)
+        self.entered, self._cancel = threading.Event(), threading.Event()
+
+    def odometry(self):
+        return (self.true_m - self.start_m) * 1000.0
+
+    def cancel(self):
+        self._cancel.set()
+
+    def run(self, step):
+        self.goals.append((step.pab, step.option, round(step.distance_mm)))
+        if self.fail.get(step.pab):
+            return ex.Report(self.fail[step.pab].pop(0), 'scripted', self.odometry(), None, False, False)
+        if step.pab == self.hold_step:
+            self.hold_step = None
+            self.entered.set()
+            assert self._cancel.wait(WAIT_S)
+            self._cancel.clear()
+            self.true_m += step.distance_mm / 2000.0
+            return ex.Report('preempted', 'cancelled', self.odometry(), None, False, False)
+        if step.pab == 'DRIVE':
+            self.true_m += step.distance_mm / 1000.0
+        found = None
+        if step.junction is not None:
+            sign = 1 if step.distance_mm > 0 else -1
+            edge = (step.junction.entry_m - SETTINGS['robot']['front_mm'] / 1000.0 if sign > 0
+                    else step.junction.exit_m + SETTINGS['robot']['rear_mm'] / 1000.0) + self.shift_m
+            if abs(edge - self.true_m) * 1000 > abs(step.distance_mm):
+                return ex.Report('aborted', 'no junction within %.0f mm' % abs(step.distance_mm),
+                                 self.odometry() + step.distance_mm, None, True, True)
+            self.true_m = edge
+            found = self.odometry()
+            self.true_m = step.end_m + self.shift_m
+        return ex.Report('succeeded', 'done', self.odometry(), found, False, step.pab != 'HOME')
+
+
+def mission(robot, route=('pit', 'target'), **kw):
+    route_plan = planner.plan(MAP, list(route), SETTINGS, 5000.0)
+    progress = kw.pop('progress', None)
+    return ex.Executive(route_plan, robot, Localiser(MAP.points[route[0]], SETTINGS), SETTINGS,
+                        progress=progress, out=lambda line: None, **kw)
+
+
+def test_full_level_runs_the_route_and_ends_at_the_target():
+    robot = FakeRobot(0.3, shift_mm=60)
+    run = mission(robot)
+    outcome = run.run()
+    assert outcome.status == 'succeeded', outcome.message
+    assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND', 'DRIVE', 'HOME']
+    # The junction re-anchored the estimate; the last drive went to where the robot really is.
+    assert abs(run.localiser.fixes[0].estimated_m - run.localiser.fixes[0].mapped_m - 0.06) < 1e-6
+    assert abs(robot.true_m - 3.0 - 0.06) < 1e-6 and abs(run.localiser.along_m - 3.0) < 1e-6
+
+
+def test_an_abort_is_retried_after_reclamping_then_the_mission_goes_on():
+    robot = FakeRobot(0.3, fail={'MITRE_BEND': ['aborted']})
+    outcome = mission(robot).run()
+    assert outcome.status == 'succeeded'
+    assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND', 'CLAMP_SIDEWAYS',
+                                           'MITRE_BEND', 'DRIVE', 'HOME']
+    assert any('retrying' in line for line in outcome.log)
+
+
+def test_retries_run_out_and_the_mission_stops_with_nothing_more_sent():
+    robot = FakeRobot(0.3, fail={'MITRE_BEND': ['aborted'] * 5})
+    outcome = mission(robot, policy={'MITRE_BEND': {'retries': 2}}).run()
+    assert outcome.status == 'aborted' and 'MITRE_BEND' in outcome.message
+    assert [g[0] for g in robot.goals].count('MITRE_BEND') == 3
+    assert robot.goals[-1][0] == 'MITRE_BEND'
+
+
+@pytest.mark.parametrize('status', ['rejected'])
+def test_a_refused_goal_is_not_retried(status):
+    robot = FakeRobot(0.3, fail={'DRIVE': [status]})
+    outcome = mission(robot).run()
+    assert outcome.status == 'aborted' and [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE']
+
+
+def test_a_cancel_from_outside_the_mission_is_not_retried():
+    robot = FakeRobot(0.3, fail={'DRIVE': ['preempted']})
+    outcome = mission(robot).run()
+    assert outcome.status == 'cancelled' and 'outside the mission' in outcome.message
+    assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE']
+
+
+def _in_thread(run):
+    result = {}
+    thread = threading.Thread(target=lambda: result.update(outcome=run.run()), daemon=True)
+    thread.start()
+    return thread, result
+
+
+def test_operator_cancel_during_a_step_ends_the_mission_and_is_never_retried():
+    robot = FakeRobot(0.3, hold_step='DRIVE')
+    run = mission(robot)
+    thread, result = _in_thread(run)
+    assert robot.entered.wait(WAIT_S)
+    run.cancel()
+    thread.join(WAIT_S)
+    assert result['outcome'].status == 'cancelled'
+    assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE']
+
+
+class Waiter(object):
+    """Progress callback that lets a test wait for a state."""
+
+    def __init__(self):
+        self.cond, self.seen = threading.Condition(), []
+
+    def __call__(self, progress):
+        with self.cond:
+            self.seen.append(progress)
+            self.cond.notify_all()
+
+    def wait_for(self, predicate):
+        with self.cond:
+            assert self.cond.wait_for(lambda: any(predicate(p) for p in self.seen), WAIT_S)
+            self.seen.clear()
+
+
+def test_pause_holds_and_resume_reclamps_then_drives_only_what_is_left():
+    robot, waiter = FakeRobot(0.3, hold_step='DRIVE'), Waiter()
+    run = mission(robot, progress=waiter)
+    thread, result = _in_thread(run)
+    assert robot.entered.wait(WAIT_S)
+    run.pause()
+    waiter.wait_for(lambda p: p.waiting_for.startswith('resume'))
+    run.resume()
+    thread.join(WAIT_S)
+    assert result['outcome'].status == 'succeeded', result['outcome'].message
+    kinds = [g[0] for g in robot.goals]
+    assert kinds == ['CLAMP_SIDEWAYS', 'DRIVE', 'CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND', 'DRIVE', 'HOME']
+    first, rest = robot.goals[1][2], robot.goals[3][2]
+    assert first + 0 == pytest.approx(2 * rest, abs=2)   # half was driven before the pause
+
+
+def test_confirm_level_waits_for_the_operator_before_each_pab():
+    robot, waiter = FakeRobot(0.3), Waiter()
+    run = mission(robot, progress=waiter, level=ex.CONFIRM)
+    thread, result = _in_thread(run)
+    for number in range(1, 6):
+        waiter.wait_for(lambda p, n=number: p.waiting_for.startswith('confirmation of step %d' % n))
+        assert len(robot.goals) == number - 1      # nothing ran before the confirmation
+        run.confirm()
+    thread.join(WAIT_S)
+    assert result['outcome'].status == 'succeeded' and len(robot.goals) == 5
+
+
+def test_manual_level_only_shows_the_plan():
+    robot = FakeRobot(0.3)
+    outcome = mission(robot, level=ex.MANUAL).run()
+    assert outcome.status == 'manual' and robot.goals == []
+
+
+def test_a_junction_far_from_where_the_map_has_it_stops_the_mission():
+    robot = FakeRobot(0.3, shift_mm=-380)       # found 380 mm early, within the 400 mm search
+    outcome = mission(robot).run()
+    assert outcome.status == 'mismatch' and 'mitre_1 found' in outcome.message
+    assert robot.goals[-1][0] == 'MITRE_BEND'
+
+
+def test_a_junction_not_found_where_the_map_has_one_stops_the_mission():
+    robot = FakeRobot(0.3, shift_mm=900)
+    outcome = mission(robot).run()
+    assert outcome.status == 'mismatch' and 'mitre_1 not found' in outcome.message
+    assert [g[0] for g in robot.goals].count('MITRE_BEND') == 1
+
+
+def test_the_way_back_reanchors_at_the_junction_rear_first():
+    robot = FakeRobot(0.3, shift_mm=40)
+    run = mission(robot, route=('pit', 'target', 'pit'))
+    outcome = run.run()
+    assert outcome.status == 'succeeded', outcome.message
+    assert len(run.localiser.fixes) == 2 and abs(run.localiser.along_m - 0.3) < 1e-6
+    # the true first straight is 40 mm longer than mapped: unobservable after the
+    # last junction, so the robot stops where the map's pit would be from there
+    assert abs(robot.true_m - 0.34) < 1e-6
+
+
+def test_progress_counts_steps_and_time_left_goes_down():
+    robot, waiter = FakeRobot(0.3), Waiter()
+    mission(robot, progress=waiter).run()
+    # every step was announced, in order, and the estimate of time left never grew
+    steps = [p.step for p in waiter.seen]
+    assert steps == sorted(steps) and steps[-1] == 5
+    lefts = [p.time_left_s for p in waiter.seen]
+    assert all(a >= b for a, b in zip(lefts, lefts[1:]))
+
+
+def test_a_bad_level_is_refused():
+    with pytest.raises(ValueError, match='autonomy level'):
+        mission(FakeRobot(0.3), level='auto')

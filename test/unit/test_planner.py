@@ -1,0 +1,193 @@
+"""Route planner (pirate.supervisory.planner): from named points to PAB goals.
+
+Expected distances are derived here from the map and the settings, never
+read back from the planner."""
+import copy
+import os
+
+import pytest
+import yaml
+
+from pirate import paths
+from pirate.sequencer.junctions import required_clamp
+from pirate.supervisory import planner
+from pirate.world import network
+
+with open(os.path.join(paths.CONFIG_DIR, 'supervisory.yaml')) as _f:
+    SETTINGS = yaml.safe_load(_f)
+MAX_DRIVE_MM = 5000.0
+FRONT = SETTINGS['robot']['front_mm']
+REAR = SETTINGS['robot']['rear_mm']
+APPROACH = SETTINGS['approach_mm']
+CLEAR = SETTINGS['clear_mm']
+SEARCH = SETTINGS['search_mm']
+
+
+def world(pieces, points, diameter=90):
+    return network.build({'name': 'test', 'diameter_mm': diameter, 'pieces': pieces,
+                          'points': [{'name': n, 'at_mm': at} for n, at in points.items()]})
+
+
+def run(net, *route, **kw):
+    return planner.plan(net, list(route), kw.pop('settings', SETTINGS), MAX_DRIVE_MM, **kw)
+
+
+def pabs(route_plan):
+    return [(s.pab, s.option) for s in route_plan.steps]
+
+
+BEND_LEFT = [{'type': 'straight', 'length_mm': 2000}, {'type': 'mitre', 'turn': 'left'},
+             {'type': 'straight', 'length_mm': 2000}, {'type': 'cap'}]
+
+
+def test_straight_route_is_clamp_drive_home():
+    net = world([{'type': 'straight', 'length_mm': 3000}], {'pit': 400, 'target': 1900})
+    steps = run(net, 'pit', 'target').steps
+    assert [(s.pab, s.option) for s in steps] == [('CLAMP_STRAIGHT', None), ('DRIVE', None), ('HOME', None)]
+    assert steps[1].distance_mm == pytest.approx(1500.0)
+    assert steps[1].speed_mm_s == SETTINGS['speed_mm_s'] and steps[1].pipe_diameter == 90
+
+
+def test_mitre_left_clamps_sideways_left_and_stops_the_front_before_it():
+    net = world(BEND_LEFT, {'pit': 300, 'target': 3000})
+    steps = run(net, 'pit', 'target', speed_mm_s=60).steps
+    assert pabs(run(net, 'pit', 'target')) == [
+        ('CLAMP_SIDEWAYS', 'LEFT'), ('DRIVE', None), ('MITRE_BEND', 'LEFT'), ('DRIVE', None), ('HOME', None)]
+    entry_mm, exit_mm = 2000, 2090
+    assert steps[1].distance_mm == pytest.approx(entry_mm - FRONT - APPROACH - 300)
+    assert steps[2].distance_mm == SEARCH and steps[2].junction.name == 'mitre_1'
+    assert steps[2].end_m * 1000 == pytest.approx(exit_mm + CLEAR)
+    assert steps[3].distance_mm == pytest.approx(3000 - exit_mm - CLEAR)
+    assert all(s.speed_mm_s == 60 for s in steps[:4])
+
+
+def test_the_way_back_takes_the_bend_rear_first_after_reclamping():
+    net = world(BEND_LEFT, {'pit': 300, 'target': 3000})
+    route_plan = run(net, 'pit', 'target', 'pit')
+    back = route_plan.steps[4:]
+    assert [(s.pab, s.option) for s in back] == [
+        ('CLAMP_SIDEWAYS', 'LEFT'), ('DRIVE', None), ('MITRE_BEND', 'LEFT'), ('DRIVE', None), ('HOME', None)]
+    entry_mm, exit_mm = 2000, 2090
+    assert back[1].distance_mm == pytest.approx((exit_mm + REAR + APPROACH) - 3000)
+    assert back[2].distance_mm == -SEARCH
+    assert back[3].distance_mm == pytest.approx(300 - (entry_mm - CLEAR))
+    assert back[3].end_m == pytest.approx(0.3)
+
+
+@pytest.mark.parametrize('side, clamp', [('right', ('CLAMP_STRAIGHT', None)), ('up', ('CLAMP_SIDEWAYS', 'LEFT'))])
+def test_straight_through_a_tee_never_presses_toward_its_open_side(side, clamp):
+    net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': side},
+                 {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 2500})
+    assert pabs(run(net, 'a', 'b'))[:3] == [clamp, ('DRIVE', None), ('T_JOINT', 'STRAIGHT')]
+
+
+def test_entering_a_tee_through_its_branch_turns_toward_its_side():
+    net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'branch', 'side': 'right'},
+                 {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 2500})
+    assert pabs(run(net, 'a', 'b'))[:3] == [('CLAMP_SIDEWAYS', 'RIGHT'), ('DRIVE', None), ('T_JOINT', 'RIGHT')]
+
+
+def test_a_bend_up_needs_no_sideways_clamp():
+    net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'mitre', 'turn': 'up'},
+                 {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 2500})
+    assert pabs(run(net, 'a', 'b'))[:3] == [('CLAMP_STRAIGHT', None), ('DRIVE', None), ('MITRE_BEND', 'UP')]
+
+
+def test_a_drive_longer_than_one_goal_may_go_is_split_evenly():
+    net = world([{'type': 'straight', 'length_mm': 12000}], {'a': 500, 'b': 11500})
+    drives = [s.distance_mm for s in run(net, 'a', 'b').steps if s.pab == 'DRIVE']
+    assert len(drives) == 3 and all(d <= MAX_DRIVE_MM for d in drives)
+    assert sum(drives) == pytest.approx(11000.0)
+
+
+def test_two_junctions_in_a_row_reclamp_between_them_only_when_needed():
+    net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'mitre', 'turn': 'up'},
+                 {'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': 'left'},
+                 {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 4000})
+    assert [p for p, _ in pabs(run(net, 'a', 'b'))] == [
+        'CLAMP_STRAIGHT', 'DRIVE', 'MITRE_BEND', 'DRIVE', 'T_JOINT', 'DRIVE', 'HOME']
+
+
+def test_junctions_are_named_in_path_order():
+    net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'mitre', 'turn': 'up'},
+                 {'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': 'left'},
+                 {'type': 'straight', 'length_mm': 1500}, {'type': 'mitre', 'turn': 'right'},
+                 {'type': 'straight', 'length_mm': 1500}], {'a': 200})
+    assert [(j.name, j.direction, j.open_side) for j in planner.junctions(net)] == [
+        ('mitre_1', 'up', None), ('tee_1', 'straight', 'left'), ('mitre_2', 'right', None)]
+
+
+def test_the_printed_plan_has_one_line_per_goal():
+    net = world(BEND_LEFT, {'pit': 300, 'target': 3000})
+    route_plan = run(net, 'pit', 'target')
+    lines = planner.format_plan(route_plan)
+    assert len(lines) == 1 + len(route_plan.steps)
+    assert 'MITRE_BEND' in lines[3] and 'LEFT' in lines[3] and 'mitre_1' in lines[3]
+
+
+@pytest.mark.parametrize('route, reason', [
+    (['pit'], 'at least two points'),
+    (['pit', 'nowhere'], "no point 'nowhere'"),
+    (['pit', 'pit'], 'the same place'),
+    (['pit', 'in_bend'], 'lies in a mitre'),
+    (['near_bend', 'target'], 'too close to mitre_1'),
+    (['pit', 'just_after'], 'within 350 mm after mitre_1'),
+])
+def test_routes_the_map_cannot_serve_are_refused_with_the_reason(route, reason):
+    net = world(BEND_LEFT, {'pit': 300, 'target': 3000, 'in_bend': 2050, 'near_bend': 1800, 'just_after': 2200})
+    with pytest.raises(planner.PlanError, match=reason):
+        run(net, *route)
+
+
+def test_a_junction_the_robot_cannot_take_in_that_diameter_is_refused():
+    settings = copy.deepcopy(SETTINGS)
+    settings['takeable'][110]['mitre'] = ['left', 'right']
+    net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'mitre', 'turn': 'down'},
+                 {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 2500}, diameter=110)
+    with pytest.raises(planner.PlanError, match=r'mitre_1 \(mitre, down\) cannot be taken in a 110 mm pipe'):
+        run(net, 'a', 'b', settings=settings)
+
+
+@pytest.mark.parametrize('kind, direction, side, expected', [
+    ('mitre', 'left', None, ('CLAMP_SIDEWAYS', 'LEFT')), ('mitre', 'right', None, ('CLAMP_SIDEWAYS', 'RIGHT')),
+    ('mitre', 'up', None, ('CLAMP_STRAIGHT', None)), ('mitre', 'down', None, ('CLAMP_STRAIGHT', None)),
+    ('tee', 'straight', 'left', ('CLAMP_STRAIGHT', None)), ('tee', 'straight', 'down', ('CLAMP_SIDEWAYS', 'LEFT')),
+])
+def test_required_clamp_puts_the_bending_plane_in_the_turn(kind, direction, side, expected):
+    assert tuple(required_clamp(kind, direction, side)) == expected
+
+
+def test_a_mitre_cannot_be_taken_straight():
+    with pytest.raises(ValueError, match='mitre cannot be taken'):
+        required_clamp('mitre', 'straight')
+
+
+@pytest.mark.parametrize('points, reason', [
+    ([{'name': 'a', 'at_mm': 10}, {'name': 'a', 'at_mm': 20}], 'named twice'),
+    ([{'name': 'a', 'at_mm': 99999}], 'outside the network'),
+    ([{'name': 'a'}], r'a point is \{name'),
+    ({'a': 1}, 'a list of'),
+])
+def test_bad_points_in_a_map_are_refused(points, reason):
+    with pytest.raises(network.WorldError, match=reason):
+        network.build({'pieces': [{'type': 'straight', 'length_mm': 1000}], 'points': points})
+
+
+def test_plan_mission_prints_the_shipped_inspection_route(capsys):
+    from pirate.supervisory import plan_cli
+    assert plan_cli.main(['inspection_90', 'launch_pit', 'target', 'launch_pit']) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[0].startswith('plan on inspection_90: launch_pit -> target -> launch_pit')
+    taken = [line.split()[1] for line in out[1:] if 'MITRE_BEND' in line or 'T_JOINT' in line]
+    assert taken == ['MITRE_BEND', 'T_JOINT', 'MITRE_BEND'] * 2
+    assert out[-1].split()[1] == 'HOME'
+
+
+@pytest.mark.parametrize('argv, reason', [
+    (['inspection_90', 'launch_pit', 'nowhere'], "no point 'nowhere'"),
+    (['no_such_map', 'a', 'b'], 'cannot read'),
+])
+def test_plan_mission_refuses_with_the_reason_and_exit_2(argv, reason, capsys):
+    from pirate.supervisory import plan_cli
+    assert plan_cli.main(argv) == 2
+    assert reason in capsys.readouterr().err
