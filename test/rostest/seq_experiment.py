@@ -3,11 +3,13 @@
 
 One script for every seq_*.test; ``~scenario`` picks the test:
 - ``experiment``: send ``~goals`` in order, each must succeed with the
-  primitives ``~expected`` (collected from the action feedback field
-  ``primitive``, non-empty values, in order); clamp goals end straight;
+  primitives ``~expected`` (the trace in the result: names in order, each
+  reached, robot times in order) and the server state ``~server_states``
+  after it; clamp goals end straight;
 - ``cancel``: start ``~goals[0]``, cancel after ``~cancel_after`` sim s:
-  PREEMPTED, a safe setpoint array on the wire, then ``~goals[0]`` again
-  succeeds;
+  PREEMPTED, the trace's last primitive preempted, the server state after
+  it ``~state_after_cancel`` (from the robot, not "Idle Unclamped"), a safe
+  setpoint array on the wire, then ``~goals[0]`` again succeeds;
 - ``reject``: each of ``~rejected`` is REJECTED with a message, and a goal
   sent while one runs is REJECTED too;
 - ``feedback_loss``: start ``~goals[0]``, kill the state node after
@@ -90,14 +92,20 @@ class SequencerTest(unittest.TestCase):
             time.sleep(0.02)
 
     def _send(self, spec, client=None):
-        """Send a goal; return the list the feedback primitives are appended to."""
-        prims = []
+        """Send a goal (the trace comes back in the result)."""
+        (client or self.client).send_goal(make_goal(spec))
 
-        def on_feedback(fb):
-            if fb.primitive and (not prims or prims[-1] != fb.primitive):
-                prims.append(fb.primitive)
-        (client or self.client).send_goal(make_goal(spec), feedback_cb=on_feedback)
-        return prims
+    def _assert_trace(self, result, outcome_last='reached'):
+        """The result's trace: robot times in order, every primitive but the last reached."""
+        steps = result.primitives
+        self.assertTrue(steps, 'empty trace')
+        for step in steps:
+            self.assertLessEqual(step.start, step.end, step)
+        for before, after in zip(steps, steps[1:]):
+            self.assertLessEqual(before.end, after.start, (before, after))
+        self.assertTrue(all(s.outcome == 'reached' for s in steps[:-1]), steps)
+        self.assertEqual(steps[-1].outcome, outcome_last, steps[-1])
+        return [s.name for s in steps]
 
     def _finish(self, client=None):
         client = client or self.client
@@ -123,12 +131,15 @@ class SequencerTest(unittest.TestCase):
     def _scenario_experiment(self):
         goals = rospy.get_param('~goals')
         expected = rospy.get_param('~expected')
-        for spec, primitives in zip(goals, expected):
-            prims = self._send(spec)
+        server_states = rospy.get_param('~server_states', [None] * len(goals))
+        for spec, primitives, server_state in zip(goals, expected, server_states):
+            self._send(spec)
             state, result, text = self._finish()
             self.assertEqual(state, GoalStatus.SUCCEEDED, '%s: %s' % (spec, text))
             self.assertTrue(result.success, result.message)
-            self.assertEqual(prims, primitives, spec)
+            self.assertEqual(self._assert_trace(result), primitives, spec)
+            if server_state is not None:
+                self.assertEqual(result.server_state, server_state, spec)
             if int(spec['name']) == CLAMP_STRAIGHT:
                 self._assert_straight()
 
@@ -142,6 +153,8 @@ class SequencerTest(unittest.TestCase):
         state, result, _ = self._finish()
         self.assertEqual(state, GoalStatus.PREEMPTED, result.message if result else '')
         self.assertIn('cancel', result.message)
+        self._assert_trace(result, outcome_last='preempted')
+        self.assertEqual(result.server_state, rospy.get_param('~state_after_cancel'))
         self._wait(lambda: self._safe_after(cancelled_at), 'a safe setpoint array', 10.0)
         self._send(spec)
         state, result, text = self._finish()

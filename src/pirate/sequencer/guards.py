@@ -85,6 +85,12 @@ class Guards(object):
         """True when this diameter has guards for ``kind``."""
         return kind in self._table
 
+    def row(self, key):
+        """The raw row ``key`` of this diameter's table (e.g. ``clamp_state``)."""
+        if key not in self._table:
+            raise NoGuards('no %s row for a %d mm pipe' % (key, self.pipe_diameter))
+        return self._table[key]
+
     def region(self, name):
         """(low, high) rad of orientation region 'straight' or 'nominal'."""
         low, high = self.common['regions'][name]

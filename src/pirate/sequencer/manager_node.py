@@ -29,9 +29,9 @@ from pirate.state.assembler import stale_reason
 from pirate.state.feed import RobotFeed, RobotView
 from pirate.sequencer.guards import GuardBook
 from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, PirateGoal,
-                        PirateResult, RobotState, SetpointArray)
+                        PirateResult, PrimitiveStep, RobotState, SetpointArray)
 from pirate.sequencer.primitives import MotionPrimitives
-from pirate.sequencer.server import ABORTED, PREEMPTED, SUCCEEDED, PirateServer
+from pirate.sequencer.server import ABORTED, PREEMPTED, SUCCEEDED, Feedback, PirateServer
 from pirate.srv import ServerStatus, ServerStatusResponse
 
 SHUTDOWN_FLUSH_S = 0.3
@@ -87,8 +87,12 @@ class PirateManager(object):
         self.feed = RobotFeed(book.common['feedback_timeout'], wall_factor=book.common['wall_timeout_factor'])
         self.setpoint.measured = self._measured_angles   # Play holds position joints where they are
         self.prims = MotionPrimitives(self.setpoint, self.control, self.limit, self.feed)
+        self._efforts = {}
         self.server = PirateServer(self.prims, self.feed, book, self._start_robot,
-                                   feedback=self._publish_feedback, log=rospy.loginfo)
+                                   feedback=self._publish_feedback, log=rospy.loginfo,
+                                   efforts=lambda: self._efforts,
+                                   pipe_diameter=int(rospy.get_param('~pipe_diameter', 90)))
+        self._progress_at = 0.0
         self._goal_lock = threading.Lock()
         self._closing = threading.Event()
         self._current = None
@@ -117,6 +121,7 @@ class PirateManager(object):
         if msg.stale:   # old angles are no feedback: the running primitive ends now
             self.feed.lose(stale_reason(tuple(bytearray(msg.silent_boards)), float('inf')))
             return
+        self._efforts = dict(zip(msg.name, msg.effort))
         self.feed.push(RobotView(dict(zip(msg.name, msg.position)), msg.orientation,
                                  msg.odometry, msg.velocity, msg.header.stamp.to_sec()))
 
@@ -130,6 +135,7 @@ class PirateManager(object):
             return      # shutting down: the safe hold is the last array sent
         self.setpoint.tick()
         self.limit.tick()
+        self._publish_progress()
 
     def _start_robot(self):
         """A goal is a request to move: PLAY and start the 10 Hz arrays."""
@@ -172,7 +178,7 @@ class PirateManager(object):
                         return
                 handle = self._queue.pop(0)
             outcome = self.server.run(handle.get_goal())
-            result = PirateResult(success=outcome.status == SUCCEEDED, message=outcome.message)
+            result = self._result(outcome)
             if outcome.status == SUCCEEDED:
                 handle.set_succeeded(result, outcome.message)
             elif outcome.status == PREEMPTED:
@@ -184,15 +190,35 @@ class PirateManager(object):
                 if self._current is handle:
                     self._current = None     # only now: the handle is terminal
 
-    def _publish_feedback(self, fb):
+    def _result(self, outcome):
+        """The result: success, message, the trace of primitives, the state after."""
+        steps = [PrimitiveStep(name=s.name, guard=s.guard, start=s.start, end=s.end, outcome=s.outcome)
+                 for s in self.server.trace.steps]
+        return PirateResult(success=outcome.status == SUCCEEDED, message=outcome.message,
+                            primitives=steps, server_state=self.server.status())
+
+    def _publish_feedback(self, fb, progress=None):
         handle = self._current
         if handle is not None and not rospy.is_shutdown():
-            handle.publish_feedback(PirateFeedback(server_state=fb.server_state, pab_state=fb.pab_state,
-                                                   primitive=fb.primitive, guard=fb.guard))
+            msg = PirateFeedback(server_state=fb.server_state, pab_state=fb.pab_state,
+                                 primitive=fb.primitive, guard=fb.guard)
+            if progress is not None:
+                msg.elapsed, msg.timeout = progress.elapsed, progress.timeout
+                msg.guard_joints, msg.guard_values, msg.guard_thresholds = progress.guard
+            handle.publish_feedback(msg)
+
+    def _publish_progress(self):
+        """Feedback with numbers (time against timeout, guard against threshold), 2 Hz robot time."""
+        progress = self.server.progress()
+        if progress is None or abs(progress.elapsed - self._progress_at) < 0.5:
+            return
+        self._progress_at = progress.elapsed
+        self._publish_feedback(Feedback(self.server.status(), self.server.pab_state,
+                                        progress.primitive, progress.guard_text), progress)
 
     def _status(self, _req):
         return ServerStatusResponse(active=bool(self.server.active), cancelled=self.server.cancelled,
-                                    server_state=self.server.state, pab_state=self.server.pab_state,
+                                    server_state=self.server.status(), pab_state=self.server.pab_state,
                                     primitive=self.server.primitive, robot_connected=self.feed.fresh())
 
     # --- shutdown ---------------------------------------------------------

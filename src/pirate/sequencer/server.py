@@ -8,8 +8,11 @@ ActionServer. Rules:
 - :meth:`run` has one exit path: whatever ends the PAB (success, cancel,
   timeout, lost feedback, a refused primitive, a bug) it returns exactly one
   outcome, and every outcome but success leaves the robot in the safe hold;
-- the server's own state follows Fig 4.2: Idle Unclamped, Idle Clamped, or
-  the running PAB.
+- the server's own state follows Fig 4.2: the running PAB, or, when idle,
+  Idle Clamped / Idle Unclamped / Idle Partly Clamped as the robot senses
+  it (:mod:`pirate.sequencer.clamp_state`), whatever ended the last goal;
+- every primitive a goal runs is kept in :attr:`trace` (robot times and
+  outcome) for the result, because feedback may be lost on the way.
 """
 import collections
 import threading
@@ -17,17 +20,22 @@ import traceback
 
 from pirate.state import feed as feeds
 from pirate.robot import safety
+from pirate.sequencer import clamp_state
 from pirate.sequencer.guards import NoGuards
 from pirate.sequencer.pabs import PABS
 from pirate.sequencer.pabs.base import PabFailed
 from pirate.sequencer.primitives import Refused
+from pirate.sequencer.trace import REACHED, Trace, guard_numbers
 
-IDLE_UNCLAMPED = 'Idle Unclamped'
-IDLE_CLAMPED = 'Idle Clamped'
+IDLE_UNCLAMPED = clamp_state.IDLE_UNCLAMPED
+IDLE_CLAMPED = clamp_state.IDLE_CLAMPED
 SUCCEEDED, ABORTED, PREEMPTED = 'succeeded', 'aborted', 'preempted'
 
 Outcome = collections.namedtuple('Outcome', 'status message')
 Feedback = collections.namedtuple('Feedback', 'server_state pab_state primitive guard')
+#: The numbers of a running primitive: robot time since it started against
+#: its timeout (s), and its guard's joints, values and thresholds (rad).
+Progress = collections.namedtuple('Progress', 'primitive guard_text elapsed timeout guard')
 
 
 class PabContext(object):
@@ -49,7 +57,8 @@ def robot_clamped(view, guards):
 class PirateServer(object):
     """Goal checking, PAB execution and the server state machine."""
 
-    def __init__(self, prims, feed, book, start_robot, feedback=None, log=None):
+    def __init__(self, prims, feed, book, start_robot, feedback=None, log=None, efforts=None,
+                 pipe_diameter=90):
         self.prims = prims
         self.feed = feed
         self.book = book
@@ -57,10 +66,14 @@ class PirateServer(object):
         self._feedback = feedback or (lambda fb: None)
         self._log = log or (lambda text: None)
         self._lock = threading.Lock()
-        self.state = IDLE_UNCLAMPED
+        self._efforts = efforts or dict     # newest bend efforts, mNm (the springs)
+        self.pipe_diameter = pipe_diameter  # mm, of the last goal: the idle state's guards
+        self.state = None           # the running PAB; None when idle (see :meth:`status`)
         self.active = None          # name of the running PAB
         self.pab_state = ''
         self.primitive = ''
+        self.trace = Trace()
+        self._guards = None
         prims.notify = self._on_primitive
 
     # --- accepting --------------------------------------------------------
@@ -112,6 +125,7 @@ class PirateServer(object):
         pab = pab_class()
         self.prims.use(guards)
         self.state = pab.name
+        self.pipe_diameter, self._guards, self.trace = goal.pipe_diameter, guards, Trace()
         outcome = Outcome(ABORTED, '%s did not start' % pab.name)
         try:
             self._start_robot()
@@ -127,20 +141,42 @@ class PirateServer(object):
         finally:
             if outcome.status != SUCCEEDED:
                 self.prims.safe_hold()
+            self.trace.end(self._robot_now(), outcome.status)
             self._finish(pab, guards, outcome)
         return outcome
 
     def _finish(self, pab, guards, outcome):
-        view = self.feed.latest()
-        if outcome.status == SUCCEEDED:
-            self.state = IDLE_CLAMPED if pab.leaves == 'clamped' else IDLE_UNCLAMPED
-        else:
-            self.state = IDLE_CLAMPED if view is not None and robot_clamped(view, guards) else IDLE_UNCLAMPED
         self._log(outcome.message)
         with self._lock:
-            self.active = None
+            self.active = self.state = None
             self.pab_state = self.primitive = ''
-        self._feedback(Feedback(self.state, '', '', ''))
+        self._feedback(Feedback(self.status(), '', '', ''))
+
+    def status(self):
+        """The server state: the running PAB, else the idle state the robot senses."""
+        running = self.state
+        if running:
+            return running
+        view = self.feed.latest()
+        if view is None:
+            return 'Idle (no robot state)'
+        try:
+            guards = self.book.for_diameter(self.pipe_diameter)
+        except NoGuards as missing:
+            return 'Idle (%s)' % missing
+        return clamp_state.idle_state(clamp_state.classify(guards, view.angles, self._efforts()))
+
+    def progress(self):
+        """:data:`Progress` of the running primitive, or None when none runs."""
+        step, view, guards = self.trace.running, self.feed.latest(), self._guards
+        if step is None or view is None or guards is None or not self.active:
+            return None
+        return Progress(step.name, step.guard, view.stamp - step.start, guards.primitive_timeout,
+                        guard_numbers(step.guard, view.angles))
+
+    def _robot_now(self):
+        view = self.feed.latest()
+        return view.stamp if view is not None else 0.0
 
     def _report(self, pab_state, guard=''):
         self.pab_state = pab_state
@@ -148,4 +184,8 @@ class PirateServer(object):
 
     def _on_primitive(self, primitive, guard):
         self.primitive = primitive
+        if primitive:
+            self.trace.start(primitive, guard, self._robot_now())
+        else:
+            self.trace.end(self._robot_now(), REACHED)
         self._feedback(Feedback(self.state, self.pab_state, primitive, guard))

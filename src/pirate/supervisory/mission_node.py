@@ -1,20 +1,29 @@
 """ROS edge of the mission runner: an actionlib client of the Pirate Server.
 
-Usage: ``rosrun pirate run_mission [MISSION.yaml]`` (default: the report's
-test mission). Exits 0 when every step succeeded, 1 otherwise.
+Usage: ``rosrun pirate run_mission [--check] [MISSION.yaml]`` (default: the
+report's test mission). The mission is checked completely first (every
+error with its line; exit 2); ``--check`` prints the plan and exits
+without a ROS master. Exits 0 when every step succeeded, 1 otherwise.
+
+Why ``actionlib.ActionClient`` and not SimpleActionClient: the simple
+client ignores (and logs as an error, "Got a transition callback on a goal
+handle that we're not tracking") a status that reaches it before its
+``send_goal`` has returned the new handle - which a fast server causes.
+Here the callback holds its own handle, so nothing arrives untracked.
 """
 import argparse
 import os
 import sys
+import threading
 import time
 
 import actionlib
-import rospkg
 import rospy
 from actionlib_msgs.msg import GoalStatus
 
-from pirate import names
-from pirate.supervisory.mission import MissionError, MissionRunner, load_mission
+from pirate import names, paths
+from pirate.sequencer.guards import load_files
+from pirate.supervisory.mission import MissionError, MissionRunner, TracedPrimitive, load_mission, plan
 from pirate.msg import PirateAction, PirateGoal
 from pirate.srv import ServerStatus
 
@@ -25,15 +34,14 @@ STATUS = {GoalStatus.SUCCEEDED: 'succeeded', GoalStatus.ABORTED: 'aborted',
 
 def default_mission():
     """The report's test mission shipped in config/missions/."""
-    return os.path.join(rospkg.RosPack().get_path('pirate'), 'config', 'missions',
-                        'report_test_mission.yaml')
+    return os.path.join(paths.CONFIG_DIR, 'missions', 'report_test_mission.yaml')
 
 
 class ActionGoalRunner(object):
     """Sends one step as a goal and waits for its terminal state."""
 
     def __init__(self, timeout_s):
-        self._client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
+        self._client = actionlib.ActionClient(names.PIRATE_ACTION, PirateAction)
         self._timeout = timeout_s
 
     def connect(self, wall_timeout=30.0):
@@ -52,28 +60,53 @@ class ActionGoalRunner(object):
             time.sleep(0.1)   # poll the status service
         return 'the Pirate Server sees no robot state within %.0f s' % wall_timeout
 
-    def __call__(self, step, on_feedback):
+    def __call__(self, step):
         goal = PirateGoal(name=step.code, pipe_diameter=step.pipe_diameter, distance=step.distance,
                           speed=step.speed, option=step.option)
-        self._client.send_goal(goal, feedback_cb=lambda fb: on_feedback(fb.primitive, fb.guard))
-        if not self._client.wait_for_result(rospy.Duration(self._timeout)):
-            self._client.cancel_goal()
-            return 'timeout', 'no result within %.0f s; goal cancelled' % self._timeout
-        result = self._client.get_result()
-        return STATUS.get(self._client.get_state(), 'unknown'), result.message if result else ''
+        done = threading.Event()
+
+        def on_transition(handle):
+            if handle.get_comm_state() == actionlib.CommState.DONE:
+                done.set()
+        handle = self._client.send_goal(goal, transition_cb=on_transition)
+        deadline = rospy.get_time() + self._timeout
+        while not done.wait(0.1):   # wall poll; the goal's time limit is robot time
+            if rospy.is_shutdown() or rospy.get_time() > deadline:
+                handle.cancel()
+                return 'timeout', 'no result within %.0f s; goal cancelled' % self._timeout, []
+        result = handle.get_result()
+        trace = [TracedPrimitive(p.name, p.guard, p.start, p.end, p.outcome)
+                 for p in (result.primitives if result else [])]
+        message = result.message if result else ''
+        if result and result.server_state:
+            message += ' [%s]' % result.server_state
+        return STATUS.get(handle.get_goal_status(), 'unknown'), message, trace
+
+
+def _check(path):
+    """The checked mission and the default drive speed; MissionError/IOError if bad."""
+    tables, common = load_files()
+    mission = load_mission(path, sorted(tables), common['drive'])
+    return mission, common['drive']['default_speed']
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description='Run a PIRATE mission (a list of PAB goals).')
     parser.add_argument('mission', nargs='?', help='mission YAML (default: the report test mission)')
     parser.add_argument('--timeout', type=float, default=300.0, help='per goal, s of robot time')
+    parser.add_argument('--check', action='store_true',
+                        help='check the mission and print the plan; no ROS, nothing moves')
     args = parser.parse_args(rospy.myargv(argv or sys.argv)[1:])
-    rospy.init_node('run_mission', anonymous=True)
+    path = args.mission or default_mission()
     try:
-        mission = load_mission(args.mission or default_mission())
+        mission, default_speed = _check(path)
     except (MissionError, IOError) as error:
-        print('run_mission: %s' % error, file=sys.stderr)
+        print('run_mission: %s:\n%s' % (path, error), file=sys.stderr)
         return 2
+    if args.check:
+        print('\n'.join(plan(mission, default_speed)))
+        return 0
+    rospy.init_node('run_mission', anonymous=True)
     runner = ActionGoalRunner(args.timeout)
     problem = runner.connect()
     if problem:

@@ -1,0 +1,130 @@
+"""Clamp state from what the robot senses, and the server state after every outcome.
+
+Issue 13 finding 2: after a cancel or an abort with the robot partly or
+fully clamped the server said "Idle Unclamped". The classifier decides per
+part from the bend angles (the guard rows of config/guards_<mm>.yaml) and
+the springs (the ``clamp_state`` row); the server reports it after every
+outcome, whatever the PAB meant to leave.
+"""
+import math
+
+import pytest
+
+from pirate.state import feed as feeds
+from pirate.state.feed import RobotFeed, RobotView
+from pirate.sequencer import clamp_state as cs
+from pirate.sequencer.guards import GuardBook, load_files
+from pirate.sequencer.pabs import PABS
+from pirate.sequencer.pabs.base import Pab, PabFailed
+from pirate.sequencer.primitives import MotionPrimitives
+from pirate.sequencer.server import ABORTED, PREEMPTED, SUCCEEDED, PirateServer
+
+from fakes import command_arrays
+
+BOOK = GuardBook(*load_files())
+FRONT_FULL = dict(bend_i=-0.82, bend_ii=0.42)
+REAR_FULL = dict(bend_iv=-0.82, bend_iii=0.42)
+FRONT_PARTLY = dict(bend_i=-0.33, bend_ii=0.20)     # Table 6.5, partial unclamp
+REAR_PARTLY = dict(bend_iv=-0.33, bend_iii=0.20)
+FRONT_CUSTOM = dict(bend_i=-0.73, bend_ii=0.31)     # Table 5.3, not the full guard
+POSES = {   # name: (angles, efforts, idle state)
+    'clamped': (dict(FRONT_FULL, **REAR_FULL), {}, cs.IDLE_CLAMPED),
+    'free': ({}, {}, cs.IDLE_UNCLAMPED),
+    'rear clamped, front partly': (dict(FRONT_PARTLY, **REAR_FULL), {},
+                                   'Idle Partly Clamped (front partly clamped, rear full)'),
+}
+
+
+def angles(**joints):
+    base = {n: 0.0 for n in ('front_tilt', 'bend_i', 'bend_ii', 'rotation', 'bend_iii', 'bend_iv')}
+    base.update(joints)
+    return base
+
+
+@pytest.mark.parametrize('mm', [90, 110])
+def test_free_and_full_per_diameter(mm):
+    guards = BOOK.for_diameter(mm)
+    closed = guards.pair('clamp', 'front')
+    pose = angles(bend_i=closed.outer.guard - 0.01, bend_ii=closed.inner.guard + 0.01)
+    assert cs.classify(guards, pose, {}) == cs.ClampState(cs.FULL, cs.FREE)
+    assert cs.classify(guards, angles(), {}) == cs.ClampState(cs.FREE, cs.FREE)
+
+
+def test_a_90_mm_clamp_is_not_a_110_mm_clamp():
+    pose = angles(**dict(FRONT_FULL, **REAR_FULL))
+    assert cs.classify(BOOK.for_diameter(90), pose, {}) == (cs.FULL, cs.FULL)
+    assert cs.classify(BOOK.for_diameter(110), pose, {}) == (cs.PARTLY, cs.PARTLY)
+
+
+def test_custom_clamp_only_where_the_diameter_has_custom_guards():
+    pose = angles(**FRONT_CUSTOM)
+    assert cs.classify_part(BOOK.for_diameter(90), 'front', pose, {}) == cs.CUSTOM
+    assert cs.classify_part(BOOK.for_diameter(110), 'front', pose, {}) == cs.PARTLY
+
+
+def test_partly_between_open_and_clamped():
+    guards = BOOK.for_diameter(90)
+    assert cs.classify_part(guards, 'rear', angles(**REAR_PARTLY), {}) == cs.PARTLY
+
+
+@pytest.mark.parametrize('bend,effort,expected', [
+    ('bend_i', 100.0, cs.PARTLY),     # outer pushes toward the wall
+    ('bend_ii', -100.0, cs.PARTLY),   # inner pushes toward the wall
+    ('bend_i', -160.0, cs.FREE),      # unclamping against the straight stop
+    ('bend_ii', 240.0, cs.FREE),
+    ('bend_i', 30.0, cs.FREE),        # below the contact threshold
+])
+def test_open_angles_with_a_spring_pushing_toward_the_wall_are_not_free(bend, effort, expected):
+    guards = BOOK.for_diameter(90)
+    assert cs.spring_contact_mnm(guards) == 60.0
+    assert cs.classify_part(guards, 'front', angles(), {bend: effort}) == expected
+
+
+def test_idle_state_names_each_part():
+    assert cs.idle_state(cs.ClampState(cs.FULL, cs.FULL)) == cs.IDLE_CLAMPED
+    assert cs.idle_state(cs.ClampState(cs.FREE, cs.FREE)) == cs.IDLE_UNCLAMPED
+    text = cs.idle_state(cs.ClampState(cs.CUSTOM, cs.FREE))
+    assert text.startswith(cs.IDLE_PARTLY) and 'front custom' in text and 'rear free' in text
+
+
+# --- the server after every outcome -----------------------------------------
+
+class Goal(object):
+    def __init__(self, name, pipe_diameter=90):
+        self.name, self.pipe_diameter = name, pipe_diameter
+        self.distance, self.speed, self.option = 0.0, 0.0, 0
+
+
+class Ends(Pab):
+    """A PAB that ends as the test says, the robot posed before it ran."""
+    name = 'Ends'
+    leaves = 'clamped'      # what it claims; the server must not believe it
+    ending = None
+
+    def check(self, goal, view, guards):
+        return None
+
+    def run(self, ctx):
+        if self.ending is not None:
+            raise self.ending
+        return 'done'
+
+
+ENDINGS = {SUCCEEDED: None, PREEMPTED: feeds.Cancelled('cancel'), ABORTED: PabFailed('stuck')}
+
+
+@pytest.mark.parametrize('status', sorted(ENDINGS))
+@pytest.mark.parametrize('pose', sorted(POSES))
+def test_server_state_after_each_outcome_is_the_sensed_one(monkeypatch, status, pose):
+    joints, efforts, expected = POSES[pose]
+    _, setpoint, control, limit = command_arrays()
+    feed = RobotFeed(0.3, clock=lambda: 50.0)
+    prims = MotionPrimitives(setpoint, control, limit, feed)
+    server = PirateServer(prims, feed, BOOK, lambda: None, efforts=lambda: efforts)
+    monkeypatch.setattr(Ends, 'ending', ENDINGS[status])
+    monkeypatch.setitem(PABS, 7, ('ENDS', Ends))
+    feed.push(RobotView(angles(**joints), math.pi / 2, 0.0, 0.0, 1.0))
+    goal = Goal(7)
+    assert server.reserve(goal) is None
+    assert server.run(goal).status == status
+    assert server.status() == expected
