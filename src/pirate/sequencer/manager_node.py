@@ -87,10 +87,8 @@ class PirateManager(object):
         self.feed = RobotFeed(book.common['feedback_timeout'], wall_factor=book.common['wall_timeout_factor'])
         self.setpoint.measured = self._measured_angles   # Play holds position joints where they are
         self.prims = MotionPrimitives(self.setpoint, self.control, self.limit, self.feed)
-        self._efforts = {}
         self.server = PirateServer(self.prims, self.feed, book, self._start_robot,
                                    feedback=self._publish_feedback, log=rospy.loginfo,
-                                   efforts=lambda: self._efforts,
                                    pipe_diameter=int(rospy.get_param('~pipe_diameter', 90)))
         self._progress_at = 0.0
         self._goal_lock = threading.Lock()
@@ -121,9 +119,9 @@ class PirateManager(object):
         if msg.stale:   # old angles are no feedback: the running primitive ends now
             self.feed.lose(stale_reason(tuple(bytearray(msg.silent_boards)), float('inf')))
             return
-        self._efforts = dict(zip(msg.name, msg.effort))
         self.feed.push(RobotView(dict(zip(msg.name, msg.position)), msg.orientation,
-                                 msg.odometry, msg.velocity, msg.header.stamp.to_sec()))
+                                 msg.odometry, msg.velocity, msg.header.stamp.to_sec(),
+                                 dict(zip(msg.name, msg.effort))))
 
     def _measured_angles(self):
         """Joint angles (rad) of a fresh robot state, or None."""

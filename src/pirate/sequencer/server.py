@@ -50,15 +50,14 @@ class PabContext(object):
 
 
 def robot_clamped(view, guards):
-    """True when both parts are past their full clamp guards."""
-    return all(guards.pair('clamp', part).closed(view.angles) for part in ('front', 'rear'))
+    """True when both parts are fully clamped as the robot senses it (angles and springs)."""
+    return clamp_state.sensed(guards, view) == (clamp_state.FULL, clamp_state.FULL)
 
 
 class PirateServer(object):
     """Goal checking, PAB execution and the server state machine."""
 
-    def __init__(self, prims, feed, book, start_robot, feedback=None, log=None, efforts=None,
-                 pipe_diameter=90):
+    def __init__(self, prims, feed, book, start_robot, feedback=None, log=None, pipe_diameter=90):
         self.prims = prims
         self.feed = feed
         self.book = book
@@ -66,7 +65,6 @@ class PirateServer(object):
         self._feedback = feedback or (lambda fb: None)
         self._log = log or (lambda text: None)
         self._lock = threading.Lock()
-        self._efforts = efforts or dict     # newest bend efforts, mNm (the springs)
         self.pipe_diameter = pipe_diameter  # mm, of the last goal: the idle state's guards
         self.state = None           # the running PAB; None when idle (see :meth:`status`)
         self.active = None          # name of the running PAB
@@ -164,7 +162,7 @@ class PirateServer(object):
             guards = self.book.for_diameter(self.pipe_diameter)
         except NoGuards as missing:
             return 'Idle (%s)' % missing
-        return clamp_state.idle_state(clamp_state.classify(guards, view.angles, self._efforts()))
+        return clamp_state.idle_state(clamp_state.sensed(guards, view))
 
     def progress(self):
         """:data:`Progress` of the running primitive, or None when none runs."""

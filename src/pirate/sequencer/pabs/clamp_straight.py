@@ -17,12 +17,22 @@ limited to 0.7 rad). Where it differs, the step lists win:
   ("rotate front (to 0)" in Tables 6.2 and 6.3).
 
 Facts are read after every action: clamp states are remembered from the
-primitives that succeeded; orientation and rotation come from the robot.
+primitives that succeeded (the start's from what the robot senses, angles
+AND springs, :mod:`pirate.sequencer.clamp_state`); orientation and rotation
+come from the robot.
+
+A rotate rear whose eq 5.2 target lies beyond the +-0.7 rad limit has not
+done its job (issue 10: the rear nominal but not straight with the rotation
+at its limit looped unclamp rear / rotate rear / clamp rear). The fact
+``limited`` remembers it: the rear is clamped again where it is, and the
+front is unclamped and turned upright (eq 5.1), which brings the rotation
+back from its limit, before the rear turns again.
 """
 import collections
 import math
 
 from pirate.robot import safety
+from pirate.sequencer import clamp_state
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, StateMachine, Transition
 
 CHANGE_MODES = 'change control modes'
@@ -39,8 +49,9 @@ CLAMPING_FRONT_CUSTOM = 'clamping front custom'
 NONE, CUSTOM, FULL = 'none', 'custom', 'full'
 
 #: What the guards look at. front/rear: NONE, CUSTOM or FULL clamp;
-#: lift: 0 down, 1 first non-nominal lift, 2 lifted for a full front clamp.
-Facts = collections.namedtuple('Facts', 'nominal_start straight aligned front rear lift')
+#: lift: 0 down, 1 first non-nominal lift, 2 lifted for a full front clamp;
+#: limited: the last rotate rear was clipped at the rotation limit.
+Facts = collections.namedtuple('Facts', 'nominal_start straight aligned front rear lift limited')
 
 
 def _g(text, test):
@@ -66,11 +77,12 @@ TRANSITIONS = (
     Transition(MOVING_FRONT, UNCLAMPING_REAR, _g('rear clamped AND front clamped',
                                                  lambda f: f.rear != NONE and f.front != NONE)),
     Transition(CLAMPING_REAR, CLAMPING_FRONT, _g('front not clamped', lambda f: f.front == NONE)),
-    Transition(CLAMPING_REAR, UNCLAMPING_REAR, _g('front clamped AND NOT straight',
-                                                  lambda f: f.front != NONE and not f.straight)),
+    Transition(CLAMPING_REAR, UNCLAMPING_REAR, _g('front clamped AND NOT straight AND NOT limited',
+                                                  lambda f: f.front != NONE and not f.straight and not f.limited)),
     Transition(CLAMPING_REAR, UNCLAMPING_FRONT,
-               _g('front clamped AND straight AND (front custom OR NOT aligned)',
-                  lambda f: f.front != NONE and f.straight and (f.front == CUSTOM or not f.aligned))),
+               _g('front clamped AND ((straight AND (front custom OR NOT aligned)) OR (NOT straight AND limited))',
+                  lambda f: f.front != NONE and ((f.straight and (f.front == CUSTOM or not f.aligned))
+                                                 or (not f.straight and f.limited)))),
     Transition(CLAMPING_REAR, END, DONE),
     Transition(CLAMPING_FRONT, CLAMPING_REAR, _g('rear not clamped', lambda f: f.rear == NONE)),
     Transition(CLAMPING_FRONT, UNCLAMPING_REAR, _g('rear clamped AND (NOT straight OR rear custom)',
@@ -96,6 +108,11 @@ TRANSITIONS = (
 MACHINE = StateMachine(CHANGE_MODES, TRANSITIONS)
 
 
+#: What a sensed clamp class means to this table at the start: a part only
+#: partly clamped (or short of the wall) has to be clamped again.
+START_CLAMP = {clamp_state.FULL: FULL, clamp_state.CUSTOM: CUSTOM}
+
+
 def in_region(orientation, region):
     """True when ``orientation`` (rad) lies in the (low, high) ``region``."""
     return region[0] <= orientation <= region[1]
@@ -119,6 +136,7 @@ class ClampStraight(Pab):
         self.clamp = {'front': NONE, 'rear': NONE}
         self.lift = 0
         self.front_custom_done = False
+        self.limited = False
 
     def check(self, goal, view, guards):
         nominal = in_region(view.orientation, guards.region('nominal'))
@@ -146,16 +164,17 @@ class ClampStraight(Pab):
         return Facts(nominal_start=self.nominal_start,
                      straight=in_region(view.orientation, ctx.guards.region('straight')),
                      aligned=abs(view.angles['rotation']) <= ctx.guards.align_tolerance,
-                     front=self.clamp['front'], rear=self.clamp['rear'], lift=self.lift)
+                     front=self.clamp['front'], rear=self.clamp['rear'], lift=self.lift,
+                     limited=self.limited)
 
     # --- actions ----------------------------------------------------------
     def _change_modes(self, ctx):
         """Bends to torque, rotation to position (report 5.10), and read the start."""
         view = ctx.feed.latest()
         self.nominal_start = in_region(view.orientation, ctx.guards.region('nominal'))
+        sensed = clamp_state.sensed(ctx.guards, view)._asdict()
         for part in ('front', 'rear'):
-            if ctx.guards.pair('clamp', part).closed(view.angles):
-                self.clamp[part] = FULL
+            self.clamp[part] = START_CLAMP.get(sensed[part], NONE)
         if view.angles['front_tilt'] >= ctx.guards.move('move_front').guard:
             self.lift = 2
         for bend in ('bend_i', 'bend_ii', 'bend_iii', 'bend_iv'):
@@ -191,11 +210,13 @@ class ClampStraight(Pab):
         """Eq 5.2 as an increment: turn the free rear part to upright."""
         view = ctx.feed.latest()
         target = view.angles['rotation'] + (math.pi / 2 - view.orientation)
+        self.limited = limit_rotation(target) != target
         ctx.prims.rotate(limit_rotation(target), name='rotate rear')
 
     def _rotate_front(self, ctx):
         """Eq 5.1: turn the free front part upright, or align if the rear is."""
         view = ctx.feed.latest()
+        self.limited = False
         if in_region(view.orientation, ctx.guards.region('straight')):
             ctx.prims.rotate(0.0, name='rotate front (align)')
         else:

@@ -1,25 +1,41 @@
 """Home (report 4.7.4.2.1, Fig 4.9): unclamp and lay the robot down.
 
-As far as the report went: it assumes a robot clamped straight. Change
+The report's Home assumes a robot clamped straight and aligned: change
 control modes, unclamp front, unclamp rear, move the front module down.
+A rotation left away from 0 (a cancel, a rotation at its limit) is
+aligned while the rear still holds the robot (the free front part turns,
+Table 4.5): otherwise the next Clamp Straight starts with the rotation at
+its limit and loops there (issue 10). An aligned robot runs the report's
+steps unchanged.
 """
-from pirate.sequencer.pabs.base import ALWAYS, END, Pab, StateMachine, Transition
+import collections
+
+from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, StateMachine, Transition
 
 CHANGE_MODES = 'change control modes'
 UNCLAMPING_FRONT = 'unclamping front'
+ALIGNING = 'aligning'
 UNCLAMPING_REAR = 'unclamping rear'
 MOVING_FRONT_DOWN = 'moving front down'
 
+#: What Home's guards look at: aligned = |rotation| within the align tolerance.
+Facts = collections.namedtuple('Facts', 'aligned')
+
+ALIGNED = Guard('aligned', lambda f: f.aligned)
+NOT_ALIGNED = Guard('NOT aligned', lambda f: not f.aligned)
+
 MACHINE = StateMachine(CHANGE_MODES, (
     Transition(CHANGE_MODES, UNCLAMPING_FRONT, ALWAYS),
-    Transition(UNCLAMPING_FRONT, UNCLAMPING_REAR, ALWAYS),
+    Transition(UNCLAMPING_FRONT, UNCLAMPING_REAR, ALIGNED),
+    Transition(UNCLAMPING_FRONT, ALIGNING, NOT_ALIGNED),
+    Transition(ALIGNING, UNCLAMPING_REAR, ALWAYS),
     Transition(UNCLAMPING_REAR, MOVING_FRONT_DOWN, ALWAYS),
     Transition(MOVING_FRONT_DOWN, END, ALWAYS),
 ))
 
 
 class Home(Pab):
-    """Unclamp front, then rear, then lower the front module."""
+    """Unclamp front, align if needed, unclamp rear, lower the front module."""
 
     name = 'Home'
     machine = MACHINE
@@ -29,9 +45,13 @@ class Home(Pab):
         return {
             CHANGE_MODES: self._change_modes,
             UNCLAMPING_FRONT: lambda ctx: ctx.prims.unclamp('front'),
+            ALIGNING: lambda ctx: ctx.prims.align(),
             UNCLAMPING_REAR: lambda ctx: ctx.prims.unclamp('rear'),
             MOVING_FRONT_DOWN: lambda ctx: ctx.prims.move_front('move_front_down'),
         }
+
+    def facts(self, ctx):
+        return Facts(aligned=abs(ctx.feed.latest().angles['rotation']) <= ctx.guards.align_tolerance)
 
     @staticmethod
     def _change_modes(ctx):
