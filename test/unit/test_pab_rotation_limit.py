@@ -15,7 +15,7 @@ import pytest
 from pirate.robot import safety
 from pirate.state.feed import RobotView
 from pirate.sequencer.guards import GuardBook, load_files
-from pirate.sequencer.pabs.clamp_straight import ClampStraight
+from pirate.sequencer.pabs.clamp import Clamp
 from pirate.sequencer.pabs.home import Home
 from pirate.sequencer.primitives import Refused, clamp_name
 from pirate.sequencer.server import PabContext
@@ -95,7 +95,7 @@ def assert_clamped_straight(robot):
 @pytest.mark.parametrize('rear_roll, rotation', [(1.45, 0.7), (1.69, -0.7)])
 def test_clamp_straight_from_the_rotation_limit(rear_roll, rotation):
     robot = KinematicRobot(rear_roll, rotation, front_tilt=0.4)
-    run(ClampStraight(), robot)
+    run(Clamp(), robot)
     assert_clamped_straight(robot)
     clipped = robot.executed.index('rotate rear')
     assert robot.executed[clipped + 1:clipped + 4] == ['clamp rear', 'unclamp front partial', 'rotate front']
@@ -110,7 +110,7 @@ def test_home_aligns_then_clamp_straight_converges():
     assert robot.executed == ['unclamp front', 'align', 'unclamp rear', 'move front down']
     assert robot.rotation == 0.0 and robot.clamped == {'front': False, 'rear': False}
     robot.executed = []
-    run(ClampStraight(), robot)
+    run(Clamp(), robot)
     assert_clamped_straight(robot)
     assert len(robot.executed) < 12
 

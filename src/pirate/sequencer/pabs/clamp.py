@@ -124,7 +124,7 @@ def limit_rotation(rad):
     return max(-top, min(top, rad))
 
 
-class ClampStraight(Pab):
+class Clamp(Pab):
     """Clamp upright (pi/2) from any start the guards allow."""
 
     name = 'Clamp Straight'

@@ -11,7 +11,7 @@ import itertools
 
 import pytest
 
-from pirate.sequencer.pabs import clamp_straight as cs
+from pirate.sequencer.pabs import clamp as cs
 from pirate.sequencer.pabs import drive, home
 from pirate.sequencer.pabs.base import ALWAYS, END, PabFailed, StateMachine, Transition
 
