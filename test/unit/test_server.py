@@ -13,6 +13,7 @@ from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.pabs import PABS
 from pirate.sequencer.pabs.base import Pab
 from pirate.sequencer.primitives import MotionPrimitives
+from pirate.sequencer.pabs import codes
 from pirate.sequencer.server import ABORTED, IDLE_UNCLAMPED, PREEMPTED, SUCCEEDED, PirateServer
 
 from fakes import command_arrays
@@ -80,10 +81,19 @@ def test_unknown_pab_code(rig):
         assert name in reason           # the message lists what is known
 
 
-def test_unbuilt_clamp_sideways(rig):
+@pytest.mark.parametrize('option', [0, 3, 7])
+def test_clamp_sideways_without_a_side(rig, option):
     server, feed, _, _, _ = rig
     feed.push(state())
-    refused(server, Goal(CLAMP_SIDEWAYS), 'CLAMP_SIDEWAYS', 'not implemented')
+    refused(server, Goal(CLAMP_SIDEWAYS, option=option), 'CLAMP_SIDEWAYS', 'side', 'LEFT', 'RIGHT')
+
+
+def test_clamp_sideways_non_nominal_in_110_mm_is_refused(rig):
+    # Upright is 90 degrees from either side: non-nominal, and the 110 mm
+    # guards have no custom clamp (issue 10.3 not done).
+    server, feed, _, _, _ = rig
+    feed.push(state())
+    refused(server, Goal(CLAMP_SIDEWAYS, pipe_diameter=110, option=1), 'non-nominal', '110 mm')
 
 
 def test_pipe_without_guards(rig):
@@ -244,3 +254,5 @@ def test_pab_codes_match_the_action_definition():
     goal = pirate_msg.PirateGoal
     for code, (name, _) in PABS.items():
         assert getattr(goal, name) == code
+    for option in ('NONE', 'LEFT', 'RIGHT', 'STRAIGHT'):
+        assert getattr(goal, option) == getattr(codes, option)

@@ -104,7 +104,7 @@ class PirateServer(object):
             return '%s: no robot state (is the robot connected and the state node running?)' % name
         if pab_class.requires_clamped and not robot_clamped(view, guards):
             return '%s needs the robot clamped (%s); it is not' % (name, IDLE_CLAMPED)
-        return pab_class().check(goal, view, guards)
+        return pab_class.for_goal(goal).check(goal, view, guards)
 
     def cancel(self):
         """Cancel the running goal; the PAB stops at its next wake-up."""
@@ -120,7 +120,7 @@ class PirateServer(object):
         """Run a reserved goal to its one :data:`Outcome`."""
         name, pab_class = PABS[goal.name]
         guards = self.book.for_diameter(goal.pipe_diameter)
-        pab = pab_class()
+        pab = pab_class.for_goal(goal)
         self.prims.use(guards)
         self.state = pab.name
         self.pipe_diameter, self._guards, self.trace = goal.pipe_diameter, guards, Trace()

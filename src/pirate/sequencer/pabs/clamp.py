@@ -1,4 +1,12 @@
-"""Clamp Straight (report 4.7.4.1, 5.10, Table D.1; SPEC 8).
+"""Clamp Straight and Clamp Sideways (report 4.7.4.1, 5.10, Table D.1; SPEC 8).
+
+One machine and one class clamp the robot at a target orientation (Fig
+4.7): upright (pi/2, Clamp Straight), lying on its left side (pi, Clamp
+Sideways LEFT) or on its right side (0, Clamp Sideways RIGHT). The report
+built the upright case; nothing in its table depends on which way is the
+target: "straight" and "nominal" are the regions of Table 5.4 measured
+around the target (config/sequencer.yaml gives them around pi/2), and eqs
+5.1 and 5.2 turn toward the target instead of toward pi/2 (issue 10.2).
 
 The transition table below is Table D.1 reconciled with the step lists the
 report observed (Tables 6.1-6.3), because the extracted Table D.1 is damaged
@@ -33,6 +41,7 @@ import math
 
 from pirate.robot import safety
 from pirate.sequencer import clamp_state
+from pirate.sequencer.pabs import codes
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, StateMachine, Transition
 
 CHANGE_MODES = 'change control modes'
@@ -113,9 +122,29 @@ MACHINE = StateMachine(CHANGE_MODES, TRANSITIONS)
 START_CLAMP = {clamp_state.FULL: FULL, clamp_state.CUSTOM: CUSTOM}
 
 
+UPRIGHT = math.pi / 2
+#: Target orientation (rad, Fig 4.7) per goal: CLAMP_STRAIGHT, and
+#: CLAMP_SIDEWAYS by its option.
+SIDES = {codes.LEFT: ('LEFT', math.pi), codes.RIGHT: ('RIGHT', 0.0)}
+
+
+def target_of(goal):
+    """Target orientation (rad) of a clamp goal, or None when it names no side."""
+    if goal.name == codes.CLAMP_STRAIGHT:
+        return UPRIGHT
+    side = SIDES.get(goal.option)
+    return side[1] if side else None
+
+
 def in_region(orientation, region):
     """True when ``orientation`` (rad) lies in the (low, high) ``region``."""
     return region[0] <= orientation <= region[1]
+
+
+def region_around(guards, name, target):
+    """Region ``name`` of Table 5.4 (given around pi/2) moved to ``target`` (rad)."""
+    low, high = guards.region(name)
+    return low - UPRIGHT + target, high - UPRIGHT + target
 
 
 def limit_rotation(rad):
@@ -125,13 +154,18 @@ def limit_rotation(rad):
 
 
 class Clamp(Pab):
-    """Clamp upright (pi/2) from any start the guards allow."""
+    """Clamp at ``target`` rad (upright or on a side) from any start the guards allow."""
 
-    name = 'Clamp Straight'
     machine = MACHINE
     leaves = 'clamped'
 
-    def __init__(self):
+    @classmethod
+    def for_goal(cls, goal):
+        return cls(target_of(goal))
+
+    def __init__(self, target=UPRIGHT):
+        self.target = target
+        self.name = 'Clamp Straight' if target == UPRIGHT else 'Clamp Sideways'
         self.nominal_start = True
         self.clamp = {'front': NONE, 'rear': NONE}
         self.lift = 0
@@ -139,10 +173,14 @@ class Clamp(Pab):
         self.limited = False
 
     def check(self, goal, view, guards):
-        nominal = in_region(view.orientation, guards.region('nominal'))
+        if self.target is None:
+            return ('CLAMP_SIDEWAYS needs a side: option LEFT (%d) or RIGHT (%d), not %r'
+                    % (min(SIDES), max(SIDES), goal.option))
+        nominal = in_region(view.orientation, region_around(guards, 'nominal', self.target))
         if not nominal and not guards.has('clamp_rear_custom'):
-            return ('orientation %.2f rad is non-nominal and the %d mm guards have no custom '
-                    'clamp (report 5.10: non-nominal only in 90 mm)' % (view.orientation, guards.pipe_diameter))
+            return ('orientation %.2f rad is non-nominal for a target of %.2f rad and the %d mm guards '
+                    'have no custom clamp (report 5.10: non-nominal only in 90 mm)'
+                    % (view.orientation, self.target, guards.pipe_diameter))
         return None
 
     def actions(self):
@@ -162,7 +200,7 @@ class Clamp(Pab):
     def facts(self, ctx):
         view = ctx.feed.latest()
         return Facts(nominal_start=self.nominal_start,
-                     straight=in_region(view.orientation, ctx.guards.region('straight')),
+                     straight=in_region(view.orientation, region_around(ctx.guards, 'straight', self.target)),
                      aligned=abs(view.angles['rotation']) <= ctx.guards.align_tolerance,
                      front=self.clamp['front'], rear=self.clamp['rear'], lift=self.lift,
                      limited=self.limited)
@@ -171,7 +209,7 @@ class Clamp(Pab):
     def _change_modes(self, ctx):
         """Bends to torque, rotation to position (report 5.10), and read the start."""
         view = ctx.feed.latest()
-        self.nominal_start = in_region(view.orientation, ctx.guards.region('nominal'))
+        self.nominal_start = in_region(view.orientation, region_around(ctx.guards, 'nominal', self.target))
         sensed = clamp_state.sensed(ctx.guards, view)._asdict()
         for part in ('front', 'rear'):
             self.clamp[part] = START_CLAMP.get(sensed[part], NONE)
@@ -207,23 +245,23 @@ class Clamp(Pab):
         self.clamp[part] = NONE
 
     def _rotate_rear(self, ctx):
-        """Eq 5.2 as an increment: turn the free rear part to upright."""
+        """Eq 5.2 as an increment: turn the free rear part to the target."""
         view = ctx.feed.latest()
-        target = view.angles['rotation'] + (math.pi / 2 - view.orientation)
+        target = view.angles['rotation'] + (self.target - view.orientation)
         self.limited = limit_rotation(target) != target
         ctx.prims.rotate(limit_rotation(target), name='rotate rear')
 
     def _rotate_front(self, ctx):
-        """Eq 5.1: turn the free front part upright, or align if the rear is."""
+        """Eq 5.1: turn the free front part to the target, or align if the rear is there."""
         view = ctx.feed.latest()
         self.limited = False
-        if in_region(view.orientation, ctx.guards.region('straight')):
+        if in_region(view.orientation, region_around(ctx.guards, 'straight', self.target)):
             ctx.prims.rotate(0.0, name='rotate front (align)')
         else:
-            ctx.prims.rotate(limit_rotation(view.orientation - math.pi / 2), name='rotate front')
+            ctx.prims.rotate(limit_rotation(view.orientation - self.target), name='rotate front')
 
     def summary(self, ctx):
         view = ctx.feed.latest()
-        return ('clamped straight at %.3f rad, rotation %.3f rad, %d motion primitives'
-                % (view.orientation, view.angles['rotation'], len(ctx.prims.executed)))
+        return ('clamped at %.3f rad (target %.3f rad), rotation %.3f rad, %d motion primitives'
+                % (view.orientation, self.target, view.angles['rotation'], len(ctx.prims.executed)))
 
