@@ -39,6 +39,15 @@ class KinematicRobot(object):
     def change_control_mode(self, joint, mode):
         """Modes do not matter to kinematics."""
 
+    def drive_at_velocity(self, mm_s):
+        """Wheels: the kinematic robot does not travel."""
+        self.wheels = mm_s
+
+    def move_module(self, joint, counts):
+        """A bend's torque setpoint: 0 releases its spring."""
+        if counts == 0:
+            self.efforts[joint] = 0.0
+
     def move_front(self, kind='move_front'):
         self.executed.append(kind.replace('_', ' '))
         self.angles['front_tilt'] = self.guards.move(kind).guard

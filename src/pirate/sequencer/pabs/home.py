@@ -6,10 +6,13 @@ A rotation left away from 0 (a cancel, a rotation at its limit) is
 aligned while the rear still holds the robot (the free front part turns,
 Table 4.5): otherwise the next Clamp Straight starts with the rotation at
 its limit and loops there (issue 10). An aligned robot runs the report's
-steps unchanged.
+steps unchanged. The wheels are stopped first: Home starts from any pose,
+a cancelled Drive included. Each unclamp waits for its open guard, so a
+part that was only partly clamped (or free) passes at once.
 """
 import collections
 
+from pirate.sequencer.guards import CLAMP_BENDS
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, StateMachine, Transition
 
 CHANGE_MODES = 'change control modes'
@@ -44,9 +47,9 @@ class Home(Pab):
     def actions(self):
         return {
             CHANGE_MODES: self._change_modes,
-            UNCLAMPING_FRONT: lambda ctx: ctx.prims.unclamp('front'),
+            UNCLAMPING_FRONT: lambda ctx: self._unclamp(ctx, 'front'),
             ALIGNING: lambda ctx: ctx.prims.align(),
-            UNCLAMPING_REAR: lambda ctx: ctx.prims.unclamp('rear'),
+            UNCLAMPING_REAR: lambda ctx: self._unclamp(ctx, 'rear'),
             MOVING_FRONT_DOWN: lambda ctx: ctx.prims.move_front('move_front_down'),
         }
 
@@ -54,7 +57,17 @@ class Home(Pab):
         return Facts(aligned=abs(ctx.feed.latest().angles['rotation']) <= ctx.guards.align_tolerance)
 
     @staticmethod
+    def _unclamp(ctx, part):
+        """Open ``part``, then zero its bends' torque: kept on, the unclamp
+        torque drives the bends past straight into a reverse V that wedges
+        the robot where it is (twin: on its side after a sideways clamp)."""
+        ctx.prims.unclamp(part)
+        for bend in CLAMP_BENDS[part]:
+            ctx.prims.move_module(bend, 0)
+
+    @staticmethod
     def _change_modes(ctx):
+        ctx.prims.drive_at_velocity(0.0)
         for bend in ('bend_i', 'bend_ii', 'bend_iii', 'bend_iv'):
             ctx.prims.change_control_mode(bend, 'torque')
         ctx.prims.change_control_mode('front_tilt', 'pwm')
