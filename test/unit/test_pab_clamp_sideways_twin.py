@@ -27,6 +27,7 @@ def test_simple_clamp_sideways_on_the_twin(mm, option, target):
         reason, outcome = run_bounded(h, h.goal(CLAMP_SIDEWAYS, pipe_diameter=mm, option=option))
         assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
         assert h.prims.executed == CLAMP_SIMPLE
+        assert {fb.server_state for fb in h.feedback if fb.pab_state} == {'Clamp Sideways'}   # Fig 4.2
         robot_wait(h, 2.0)
         truth = h.ground_truth()
         assert abs(truth['roll'] - target) < 0.1 and abs(truth['front_roll'] - target) < 0.1, truth['roll']
