@@ -58,12 +58,21 @@ class Home(Pab):
 
     @staticmethod
     def _unclamp(ctx, part):
-        """Open ``part``, then zero its bends' torque: kept on, the unclamp
-        torque drives the bends past straight into a reverse V that wedges
-        the robot where it is (twin: on its side after a sideways clamp)."""
+        """Open ``part``, then leave its outer bend compliant (torque 0) and
+        hold its inner bend where it opened (PWM 0, the worm holds).
+
+        Kept on, the unclamp torque drove the bends past straight into a
+        reverse V that wedged the robot where it was (twin: on its side
+        after a sideways clamp); both bends held at PWM 0 kept the robot's
+        weight on the outer springs (100-130 mNm in the twin), which reads
+        as pressing; an inner bend at torque 0 is closed again by the outer
+        one (report Table 6.5's released inner bends).
+        """
         ctx.prims.unclamp(part)
-        for bend in CLAMP_BENDS[part]:
-            ctx.prims.move_module(bend, 0)
+        outer, inner = CLAMP_BENDS[part]
+        ctx.prims.move_module(outer, 0)
+        ctx.prims.change_control_mode(inner, 'pwm')
+        ctx.prims.move_module(inner, 0)
 
     @staticmethod
     def _change_modes(ctx):
