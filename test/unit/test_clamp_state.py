@@ -97,6 +97,10 @@ RECORDED = [   # (mm, part, angles, efforts, class)
     (90, 'rear', dict(bend_iv=-0.785, bend_iii=0.437), dict(bend_iv=-34.3, bend_iii=-193.7), cs.PARTLY),
     (110, 'rear', dict(bend_iv=-1.262, bend_iii=0.729), dict(bend_iv=-41.4, bend_iii=-191.6), cs.PARTLY),
     (90, 'front', dict(bend_i=0.048, bend_ii=-0.104), dict(bend_i=7.1, bend_ii=-13.1), cs.FREE),
+    # the robot's weight on worm-held bends (efforts recorded with both bends
+    # at PWM 0 after an unclamp) under clamp angles: no clamp, and not free
+    (90, 'rear', dict(bend_iv=-0.85, bend_iii=0.40), dict(bend_iv=127.1, bend_iii=121.0), cs.PARTLY),
+    (90, 'rear', dict(bend_iv=-0.123, bend_iii=0.061), dict(bend_iv=127.1, bend_iii=121.0), cs.PARTLY),
     (110, 'front', dict(bend_i=0.091, bend_ii=-0.189), dict(bend_i=6.1, bend_ii=-13.1), cs.FREE),
 ]
 

@@ -9,10 +9,10 @@ Per part (front = Bend I/II, rear = Bend IV/III, SPEC 2) the classes are:
 
 - ``full``: both bends past the full clamp guard (Table 5.2) AND the outer
   bend's spring presses toward the wall (effort, signed like the clamp
-  setpoint of Table 5.2, at least ``spring_contact_mnm``);
+  setpoint of Table 5.2, at least ``spring_clamp_mnm``);
 - ``custom``: the same with a custom clamp guard (Table 5.3) instead;
 - ``free``: both bends back inside the full unclamp guard AND neither
-  spring pushes in the clamping direction;
+  spring pushes in the clamping direction (``spring_contact_mnm``);
 - ``partly clamped``: anything else - bends between open and clamped, bends
   past a clamp guard with the V short of the wall (a cancel between the
   guard and the wall leaves that), or open-looking bends whose spring says
@@ -24,7 +24,11 @@ Only the outer bend's spring says the V spans the pipe: the clamp releases
 the inner bend (setpoint 0) once its guard holds, and while the V closes
 the inner spring loads against the floor before the apex meets the wall
 (twin, 90 mm, cancelled at the guard: inner -194 mNm, outer -34 mNm, no
-wall contact; clamped: outer 241 mNm). The worm gears keep the spring's
+wall contact; clamped: outer 241 mNm). The clamp threshold sits between
+what a spring carries without the wall and the clamp's torque: bends held
+by their worms carry the robot's weight at 100-130 mNm (twin), and a clamp
+judged at 60 mNm was a false success (bench/pab_clamp_sweep: retried after
+a cancel, "clamped" with the rear apex off the wall). The worm gears keep the spring's
 deflection when the motors stop, so a clamp held at PWM 0 still reads as
 pressing. Only the clamping direction counts: an unclamp drives the bends
 against their straight stop, which loads the springs the other way.
@@ -50,8 +54,13 @@ ClampState = collections.namedtuple('ClampState', 'front rear')
 
 
 def spring_contact_mnm(guards):
-    """Spring effort (mNm, clamping direction) at which a bend presses on the wall."""
+    """Spring effort (mNm, clamping direction) at which a bend touches something."""
     return float(guards.row('clamp_state')['spring_contact_mnm'])
+
+
+def spring_clamp_mnm(guards):
+    """Spring effort (mNm, clamping direction) of an outer bend clamping on the wall."""
+    return float(guards.row('clamp_state')['spring_clamp_mnm'])
 
 
 def classify_part(guards, part, angles, efforts):
@@ -68,18 +77,19 @@ def classify_part(guards, part, angles, efforts):
 
 def clamped(guards, pair, angles, efforts):
     """True when the clamp ``pair`` holds: its angle guards AND its outer spring on the wall."""
-    return pair.closed(angles) and _pushes(guards, pair.outer, efforts)
+    return pair.closed(angles) and _pushes(pair.outer, efforts, spring_clamp_mnm(guards))
 
 
 def pressing(guards, part, efforts):
     """True when a bend of ``part`` pushes in its clamping direction (sign of its clamp setpoint)."""
     clamp = guards.pair('clamp', part)
-    return any(_pushes(guards, bend, efforts) for bend in (clamp.outer, clamp.inner))
+    contact = spring_contact_mnm(guards)
+    return any(_pushes(bend, efforts, contact) for bend in (clamp.outer, clamp.inner))
 
 
-def _pushes(guards, bend, efforts):
+def _pushes(bend, efforts, threshold_mnm):
     sign = 1 if bend.setpoint > 0 else -1
-    return (efforts or {}).get(bend.joint, 0.0) * sign >= spring_contact_mnm(guards)
+    return (efforts or {}).get(bend.joint, 0.0) * sign >= threshold_mnm
 
 
 def classify(guards, angles, efforts):
