@@ -9,7 +9,10 @@ its spring presses the wall (ground truth, read by the test only).
 """
 import threading
 
+import pytest
+
 from pirate.sim.harness import SimHarness
+from test_sequencer_sim import run_bounded
 from test_sim_twin_sequencer import CLAMP_STRAIGHT, assert_clamped_straight, robot_wait
 
 DRIVE = 4
@@ -40,3 +43,24 @@ def test_cancel_past_the_guard_short_of_the_wall_then_retry():
         assert 'clamp rear' in h.prims.executed
         assert_clamped_straight(h)
         assert h.server.status() == 'Idle Clamped'
+
+
+@pytest.mark.parametrize('front_outer', [-0.1, -0.5, -0.9])
+def test_cancel_with_the_rear_clamped_then_retry_keeps_the_rear(front_outer):
+    # Cancelled while clamping the front: the rear is clamped and held by its
+    # worms at PWM 0. The retry must not let it go (torque mode at setpoint 0
+    # did: the goal "succeeded" with the rear apex off the wall).
+    with SimHarness(speedup=SPEEDUP, world='straight_90') as h:
+        goal = h.goal(CLAMP_STRAIGHT)
+        assert h.server.reserve(goal) is None
+        worker = threading.Thread(target=h.server.run, args=(goal,), daemon=True)
+        worker.start()
+        assert h.feed.wait_until(lambda v: h.prims.executed[-1:] == ['clamp front'] and v.angles['bend_i'] <= front_outer,
+                                 30.0, 'clamping the front')
+        h.server.cancel()
+        worker.join(30.0)
+        assert 'rear full' in h.server.status()
+        reason, outcome = run_bounded(h, goal)
+        assert reason is None and outcome.status == 'succeeded', outcome.message
+        assert 'clamp rear' not in h.prims.executed
+        assert_clamped_straight(h)

@@ -41,6 +41,7 @@ import math
 
 from pirate.robot import safety
 from pirate.sequencer import clamp_state
+from pirate.sequencer.guards import CLAMP_BENDS
 from pirate.sequencer.pabs import codes
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, StateMachine, Transition
 
@@ -207,16 +208,23 @@ class Clamp(Pab):
 
     # --- actions ----------------------------------------------------------
     def _change_modes(self, ctx):
-        """Bends to torque, rotation to position (report 5.10), and read the start."""
+        """Bends to torque, rotation to position (report 5.10), and read the start.
+
+        A part that starts clamped keeps its bends' mode: after a cancel the
+        worms hold it at PWM 0, and torque mode at setpoint 0 would let the
+        clamp go (twin: the rear opened to -0.44 rad while the retried goal
+        clamped the front, and the goal "succeeded"; bench/pab_clamp_sweep).
+        """
         view = ctx.feed.latest()
         self.nominal_start = in_region(view.orientation, region_around(ctx.guards, 'nominal', self.target))
         sensed = clamp_state.sensed(ctx.guards, view)._asdict()
         for part in ('front', 'rear'):
             self.clamp[part] = START_CLAMP.get(sensed[part], NONE)
+            if self.clamp[part] == NONE:
+                for bend in CLAMP_BENDS[part]:
+                    ctx.prims.change_control_mode(bend, 'torque')
         if view.angles['front_tilt'] >= ctx.guards.move('move_front').guard:
             self.lift = 2
-        for bend in ('bend_i', 'bend_ii', 'bend_iii', 'bend_iv'):
-            ctx.prims.change_control_mode(bend, 'torque')
         ctx.prims.change_control_mode('rotation', 'position')
         ctx.prims.change_control_mode('front_tilt', 'pwm')
 
