@@ -24,13 +24,16 @@ from fakes import command_arrays
 BOOK = GuardBook(*load_files())
 FRONT_FULL = dict(bend_i=-0.82, bend_ii=0.42)
 REAR_FULL = dict(bend_iv=-0.82, bend_iii=0.42)
+ON_WALL = dict(bend_i=241.1, bend_iv=241.1)      # outer springs at the clamp's torque, mNm
 FRONT_PARTLY = dict(bend_i=-0.33, bend_ii=0.20)     # Table 6.5, partial unclamp
 REAR_PARTLY = dict(bend_iv=-0.33, bend_iii=0.20)
 FRONT_CUSTOM = dict(bend_i=-0.73, bend_ii=0.31)     # Table 5.3, not the full guard
 POSES = {   # name: (angles, efforts, idle state)
-    'clamped': (dict(FRONT_FULL, **REAR_FULL), {}, cs.IDLE_CLAMPED),
+    'clamped': (dict(FRONT_FULL, **REAR_FULL), ON_WALL, cs.IDLE_CLAMPED),
+    'clamp angles, short of the wall': (dict(FRONT_FULL, **REAR_FULL), {},
+                                        'Idle Partly Clamped (front partly clamped, rear partly clamped)'),
     'free': ({}, {}, cs.IDLE_UNCLAMPED),
-    'rear clamped, front partly': (dict(FRONT_PARTLY, **REAR_FULL), {},
+    'rear clamped, front partly': (dict(FRONT_PARTLY, **REAR_FULL), ON_WALL,
                                    'Idle Partly Clamped (front partly clamped, rear full)'),
 }
 
@@ -46,20 +49,21 @@ def test_free_and_full_per_diameter(mm):
     guards = BOOK.for_diameter(mm)
     closed = guards.pair('clamp', 'front')
     pose = angles(bend_i=closed.outer.guard - 0.01, bend_ii=closed.inner.guard + 0.01)
-    assert cs.classify(guards, pose, {}) == cs.ClampState(cs.FULL, cs.FREE)
+    assert cs.classify(guards, pose, dict(bend_i=241.1)) == cs.ClampState(cs.FULL, cs.FREE)
     assert cs.classify(guards, angles(), {}) == cs.ClampState(cs.FREE, cs.FREE)
 
 
 def test_a_90_mm_clamp_is_not_a_110_mm_clamp():
     pose = angles(**dict(FRONT_FULL, **REAR_FULL))
-    assert cs.classify(BOOK.for_diameter(90), pose, {}) == (cs.FULL, cs.FULL)
-    assert cs.classify(BOOK.for_diameter(110), pose, {}) == (cs.PARTLY, cs.PARTLY)
+    assert cs.classify(BOOK.for_diameter(90), pose, ON_WALL) == (cs.FULL, cs.FULL)
+    assert cs.classify(BOOK.for_diameter(110), pose, ON_WALL) == (cs.PARTLY, cs.PARTLY)
 
 
 def test_custom_clamp_only_where_the_diameter_has_custom_guards():
     pose = angles(**FRONT_CUSTOM)
-    assert cs.classify_part(BOOK.for_diameter(90), 'front', pose, {}) == cs.CUSTOM
-    assert cs.classify_part(BOOK.for_diameter(110), 'front', pose, {}) == cs.PARTLY
+    assert cs.classify_part(BOOK.for_diameter(90), 'front', pose, ON_WALL) == cs.CUSTOM
+    assert cs.classify_part(BOOK.for_diameter(110), 'front', pose, ON_WALL) == cs.PARTLY
+    assert cs.classify_part(BOOK.for_diameter(90), 'front', pose, {}) == cs.PARTLY
 
 
 def test_partly_between_open_and_clamped():
@@ -78,6 +82,32 @@ def test_open_angles_with_a_spring_pushing_toward_the_wall_are_not_free(bend, ef
     guards = BOOK.for_diameter(90)
     assert cs.spring_contact_mnm(guards) == 60.0
     assert cs.classify_part(guards, 'front', angles(), {bend: effort}) == expected
+
+
+#: Recorded in the physics twin (straight_90 / straight_110 worlds, SimHarness,
+#: 1 s of robot time after the event): bend angles (rad) and spring efforts
+#: (mNm) of each part, and what the part is. "cancelled at the guard": Clamp
+#: Straight cancelled as the rear outer bend reached its guard; the V stops
+#: short of the wall while the inner spring pushes on the floor.
+RECORDED = [   # (mm, part, angles, efforts, class)
+    (90, 'rear', dict(bend_iv=-1.019, bend_iii=0.509), dict(bend_iv=241.1, bend_iii=0.0), cs.FULL),
+    (90, 'front', dict(bend_i=-1.005, bend_ii=0.506), dict(bend_i=241.1, bend_ii=0.0), cs.FULL),
+    (110, 'front', dict(bend_i=-1.586, bend_ii=0.793), dict(bend_i=241.1, bend_ii=0.0), cs.FULL),
+    (90, 'rear', dict(bend_iv=-0.765, bend_iii=0.437), dict(bend_iv=-34.3, bend_iii=-193.7), cs.PARTLY),
+    (90, 'rear', dict(bend_iv=-0.785, bend_iii=0.437), dict(bend_iv=-34.3, bend_iii=-193.7), cs.PARTLY),
+    (110, 'rear', dict(bend_iv=-1.262, bend_iii=0.729), dict(bend_iv=-41.4, bend_iii=-191.6), cs.PARTLY),
+    (90, 'front', dict(bend_i=0.048, bend_ii=-0.104), dict(bend_i=7.1, bend_ii=-13.1), cs.FREE),
+    # the robot's weight on worm-held bends (efforts recorded with both bends
+    # at PWM 0 after an unclamp) under clamp angles: no clamp, and not free
+    (90, 'rear', dict(bend_iv=-0.85, bend_iii=0.40), dict(bend_iv=127.1, bend_iii=121.0), cs.PARTLY),
+    (90, 'rear', dict(bend_iv=-0.123, bend_iii=0.061), dict(bend_iv=127.1, bend_iii=121.0), cs.PARTLY),
+    (110, 'front', dict(bend_i=0.091, bend_ii=-0.189), dict(bend_i=6.1, bend_ii=-13.1), cs.FREE),
+]
+
+
+@pytest.mark.parametrize('mm,part,joints,efforts,expected', RECORDED)
+def test_recorded_twin_values(mm, part, joints, efforts, expected):
+    assert cs.classify_part(BOOK.for_diameter(mm), part, angles(**joints), efforts) == expected
 
 
 def test_idle_state_names_each_part():
@@ -120,10 +150,10 @@ def test_server_state_after_each_outcome_is_the_sensed_one(monkeypatch, status, 
     _, setpoint, control, limit = command_arrays()
     feed = RobotFeed(0.3, clock=lambda: 50.0)
     prims = MotionPrimitives(setpoint, control, limit, feed)
-    server = PirateServer(prims, feed, BOOK, lambda: None, efforts=lambda: efforts)
+    server = PirateServer(prims, feed, BOOK, lambda: None)
     monkeypatch.setattr(Ends, 'ending', ENDINGS[status])
     monkeypatch.setitem(PABS, 7, ('ENDS', Ends))
-    feed.push(RobotView(angles(**joints), math.pi / 2, 0.0, 0.0, 1.0))
+    feed.push(RobotView(angles(**joints), math.pi / 2, 0.0, 0.0, 1.0, efforts))
     goal = Goal(7)
     assert server.reserve(goal) is None
     assert server.run(goal).status == status

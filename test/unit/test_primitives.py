@@ -18,10 +18,14 @@ from fakes import command_arrays
 JOINTS = ('front_tilt', 'bend_i', 'bend_ii', 'rotation', 'bend_iii', 'bend_iv')
 
 
-def view(**angles):
+#: Both outer springs at the clamp's torque (mNm): the V presses the wall.
+ON_WALL = dict(bend_i=241.0, bend_iv=241.0)
+
+
+def view(efforts=None, **angles):
     base = {name: 0.0 for name in JOINTS}
     base.update(angles)
-    return RobotView(base, math.pi / 2, 0.0, 0.0, 1.0)
+    return RobotView(base, math.pi / 2, 0.0, 0.0, 1.0, ON_WALL if efforts is None else efforts)
 
 
 class FakeFeed(object):
@@ -73,14 +77,15 @@ def test_clamp_torque_guard_then_inner_released(rig, part, outer, inner):
     prims, feed, _ = rig
     feed.states = [view(**{outer: -0.76, inner: 0.40}),      # outer short of -0.77
                    view(**{outer: -0.80, inner: 0.34}),      # inner short of 0.35
-                   view(**{outer: -0.77, inner: 0.35})]      # both exactly at the guard
+                   view({inner: -194.0}, **{outer: -0.80, inner: 0.40}),  # angles, but short of the wall
+                   view(**{outer: -0.77, inner: 0.35})]      # both exactly at the guard, on the wall
     prims.clamp(part)
     assert prims.control.mode_of(outer) == 'torque' and prims.control.mode_of(inner) == 'torque'
     describe, guard, timeout, during = feed.waits[0]
     idx = {name: i for i, name in enumerate(('camera_tilt', 'front_tilt', 'bend_i', 'bend_ii',
                                              'imu_module', 'rotation', 'bend_iii', 'bend_iv'))}
     assert during[idx[outer]] == 256 and during[idx[inner]] == -256   # written before the wait
-    assert not guard(feed.states[0]) and not guard(feed.states[1]) and guard(feed.states[2])
+    assert [guard(s) for s in feed.states] == [False, False, False, True]
     assert timeout == 15.0
     assert prims.setpoint.get(inner) == 0          # released after the guard (4.7.2.3)
     assert prims.setpoint.get(outer) == 256        # outer keeps pressing

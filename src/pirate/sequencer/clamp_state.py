@@ -7,21 +7,31 @@ where they start (issue 10) use the same classifier. Pure Python.
 
 Per part (front = Bend I/II, rear = Bend IV/III, SPEC 2) the classes are:
 
-- ``full``: both bends past the full clamp guard (Table 5.2);
-- ``custom``: past a custom clamp guard (Table 5.3) but not the full one;
+- ``full``: both bends past the full clamp guard (Table 5.2) AND the outer
+  bend's spring presses toward the wall (effort, signed like the clamp
+  setpoint of Table 5.2, at least ``spring_clamp_mnm``);
+- ``custom``: the same with a custom clamp guard (Table 5.3) instead;
 - ``free``: both bends back inside the full unclamp guard AND neither
-  spring pushes in the clamping direction (effort, signed like the clamp
-  setpoint of Table 5.2, below ``spring_contact_mnm``);
-- ``partly clamped``: anything else - bends between open and clamped, or
-  bends that look open while a spring says they press on something.
+  spring pushes in the clamping direction (``spring_contact_mnm``);
+- ``partly clamped``: anything else - bends between open and clamped, bends
+  past a clamp guard with the V short of the wall (a cancel between the
+  guard and the wall leaves that), or open-looking bends whose spring says
+  they press on something.
 
-Why the spring only decides free vs partly: the worm gears (24:1) hold a
-clamp after the motor is switched to PWM 0 (the safe hold), and the spring
-then reads whatever the gear keeps, down to nothing; the angles past the
-clamp guard are what say the V spans the pipe. An open-looking part with a
-loaded spring is touching the wall or an obstacle and is not free. Only
-the clamping direction counts: an unclamp drives the bends against their
-straight stop, which loads the springs the other way.
+Why angles AND spring (report 7.2 recommends combining both; issue 10): the
+guard angle alone called a part clamped 0.04-0.11 rad short of the wall.
+Only the outer bend's spring says the V spans the pipe: the clamp releases
+the inner bend (setpoint 0) once its guard holds, and while the V closes
+the inner spring loads against the floor before the apex meets the wall
+(twin, 90 mm, cancelled at the guard: inner -194 mNm, outer -34 mNm, no
+wall contact; clamped: outer 241 mNm). The clamp threshold sits between
+what a spring carries without the wall and the clamp's torque: bends held
+by their worms carry the robot's weight at 100-130 mNm (twin), and a clamp
+judged at 60 mNm was a false success (bench/pab_clamp_sweep: retried after
+a cancel, "clamped" with the rear apex off the wall). The worm gears keep the spring's
+deflection when the motors stop, so a clamp held at PWM 0 still reads as
+pressing. Only the clamping direction counts: an unclamp drives the bends
+against their straight stop, which loads the springs the other way.
 
 The angle thresholds are the guard rows of ``config/guards_<mm>.yaml``;
 the spring threshold is that file's ``clamp_state`` row, so each pipe
@@ -44,33 +54,52 @@ ClampState = collections.namedtuple('ClampState', 'front rear')
 
 
 def spring_contact_mnm(guards):
-    """Spring effort (mNm, clamping direction) at which a bend presses on the wall."""
+    """Spring effort (mNm, clamping direction) at which a bend touches something."""
     return float(guards.row('clamp_state')['spring_contact_mnm'])
+
+
+def spring_clamp_mnm(guards):
+    """Spring effort (mNm, clamping direction) of an outer bend clamping on the wall."""
+    return float(guards.row('clamp_state')['spring_clamp_mnm'])
 
 
 def classify_part(guards, part, angles, efforts):
     """Class of ``part`` ('front'/'rear') from joint ``angles`` (rad) and ``efforts`` (mNm)."""
-    if guards.pair('clamp', part).closed(angles):
+    if clamped(guards, guards.pair('clamp', part), angles, efforts):
         return FULL
     for row in CUSTOM_ROWS[part]:
-        if guards.has(row) and guards.pair(row, part).closed(angles):
+        if guards.has(row) and clamped(guards, guards.pair(row, part), angles, efforts):
             return CUSTOM
     if guards.pair('unclamp', part).opened(angles) and not pressing(guards, part, efforts):
         return FREE
     return PARTLY
 
 
+def clamped(guards, pair, angles, efforts):
+    """True when the clamp ``pair`` holds: its angle guards AND its outer spring on the wall."""
+    return pair.closed(angles) and _pushes(pair.outer, efforts, spring_clamp_mnm(guards))
+
+
 def pressing(guards, part, efforts):
     """True when a bend of ``part`` pushes in its clamping direction (sign of its clamp setpoint)."""
-    contact = spring_contact_mnm(guards)
     clamp = guards.pair('clamp', part)
-    return any(efforts.get(bend.joint, 0.0) * (1 if bend.setpoint > 0 else -1) >= contact
-               for bend in (clamp.outer, clamp.inner))
+    contact = spring_contact_mnm(guards)
+    return any(_pushes(bend, efforts, contact) for bend in (clamp.outer, clamp.inner))
+
+
+def _pushes(bend, efforts, threshold_mnm):
+    sign = 1 if bend.setpoint > 0 else -1
+    return (efforts or {}).get(bend.joint, 0.0) * sign >= threshold_mnm
 
 
 def classify(guards, angles, efforts):
     """:data:`ClampState` of both parts."""
     return ClampState(*(classify_part(guards, part, angles, efforts) for part in PARTS))
+
+
+def sensed(guards, view):
+    """:data:`ClampState` of the robot in ``view`` (a :class:`pirate.state.feed.RobotView`)."""
+    return classify(guards, view.angles, view.efforts)
 
 
 def idle_state(clamp):

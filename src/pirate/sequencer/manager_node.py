@@ -106,10 +106,8 @@ class PirateManager(object):
         self.feed = RobotFeed(book.common['feedback_timeout'], wall_factor=book.common['wall_timeout_factor'])
         self.setpoint.measured = self._measured_angles   # Play holds position joints where they are
         self.prims = MotionPrimitives(self.setpoint, self.control, self.limit, self.feed)
-        self._efforts = {}
         self.server = PirateServer(self.prims, self.feed, book, self._start_robot,
                                    feedback=self._publish_feedback, log=rospy.loginfo,
-                                   efforts=lambda: self._efforts,
                                    pipe_diameter=int(rospy.get_param('~pipe_diameter', 90)),
                                    authority=self._panel_refusal)
         self._progress_at = 0.0
@@ -184,9 +182,9 @@ class PirateManager(object):
         if blocker:     # old angles are no feedback: the running primitive ends now
             self.feed.lose(blocker)
             return
-        self._efforts = dict(zip(msg.name, msg.effort))
         self.feed.push(RobotView(dict(zip(msg.name, msg.position)), msg.orientation,
-                                 msg.odometry, msg.velocity, msg.header.stamp.to_sec()))
+                                 msg.odometry, msg.velocity, msg.header.stamp.to_sec(),
+                                 dict(zip(msg.name, msg.effort))))
 
     def _measured_angles(self):
         """Joint angles (rad) of a fresh robot state, or None."""

@@ -15,6 +15,7 @@ import contextlib
 
 from pirate.robot import safety, units
 from pirate.robot.hold import safe_hold
+from pirate.sequencer import clamp_state
 
 
 class Refused(ValueError):
@@ -96,12 +97,16 @@ class MotionPrimitives(object):
     def clamp(self, part, kind='clamp'):
         """Clamp ``part`` ('front'/'rear') with guards ``kind`` (report 4.7.2.3).
 
-        Bends in torque mode; when both guards hold, the inner bend gets 0 to
-        release its torque so the other part can still move.
+        Bends in torque mode; when both guards hold and the outer spring
+        presses the wall (a clamp means pressing the wall, issue 10), the
+        inner bend gets 0 to release its torque so the other part can
+        still move.
         """
         pair = self.guards.pair(kind, part)
         self._bends_in_torque(pair)
-        self.wait_for(clamp_name(kind, part), lambda v: pair.closed(v.angles), pair.describe(True))
+        self.wait_for(clamp_name(kind, part),
+                      lambda v: clamp_state.clamped(self.guards, pair, v.angles, v.efforts),
+                      '%s and %s on the wall' % (pair.describe(True), pair.outer.joint))
         with self.writing():
             self.setpoint.set(pair.inner.joint, 0)
 

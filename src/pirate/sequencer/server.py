@@ -52,14 +52,14 @@ class PabContext(object):
 
 
 def robot_clamped(view, guards):
-    """True when both parts are past their full clamp guards."""
-    return all(guards.pair('clamp', part).closed(view.angles) for part in ('front', 'rear'))
+    """True when both parts are fully clamped as the robot senses it (angles and springs)."""
+    return clamp_state.sensed(guards, view) == (clamp_state.FULL, clamp_state.FULL)
 
 
 class PirateServer(object):
     """Goal checking, PAB execution and the server state machine."""
 
-    def __init__(self, prims, feed, book, start_robot, feedback=None, log=None, efforts=None,
+    def __init__(self, prims, feed, book, start_robot, feedback=None, log=None,
                  pipe_diameter=90, authority=None):
         self.prims = prims
         self.feed = feed
@@ -68,7 +68,6 @@ class PirateServer(object):
         self._feedback = feedback or (lambda fb: None)
         self._log = log or (lambda text: None)
         self._lock = threading.Lock()
-        self._efforts = efforts or dict     # newest bend efforts, mNm (the springs)
         self._authority = authority or (lambda: None)   # the panel: a reason no goal may move
         self.pipe_diameter = pipe_diameter  # mm, of the last goal: the idle state's guards
         self.state = None           # the running PAB; None when idle (see :meth:`status`)
@@ -110,7 +109,7 @@ class PirateServer(object):
             return '%s: no robot state (is the robot connected and the state node running?)' % name
         if pab_class.requires_clamped and not robot_clamped(view, guards):
             return '%s needs the robot clamped (%s); it is not' % (name, IDLE_CLAMPED)
-        return pab_class().check(goal, view, guards)
+        return pab_class.for_goal(goal).check(goal, view, guards)
 
     def cancel(self):
         """Cancel the running goal; the PAB stops at its next wake-up."""
@@ -126,7 +125,7 @@ class PirateServer(object):
         """Run a reserved goal to its one :data:`Outcome`."""
         name, pab_class = PABS[goal.name]
         guards = self.book.for_diameter(goal.pipe_diameter)
-        pab = pab_class()
+        pab = pab_class.for_goal(goal)
         self.prims.use(guards)
         self.state = pab.name
         self.pipe_diameter, self._guards, self.trace = goal.pipe_diameter, guards, Trace()
@@ -188,7 +187,7 @@ class PirateServer(object):
             guards = self.book.for_diameter(self.pipe_diameter)
         except NoGuards as missing:
             return 'Idle (%s)' % missing
-        return clamp_state.idle_state(clamp_state.classify(guards, view.angles, self._efforts()))
+        return clamp_state.idle_state(clamp_state.sensed(guards, view))
 
     def progress(self):
         """:data:`Progress` of the running primitive, or None when none runs."""

@@ -47,7 +47,9 @@ Constants and where they come from
 - Worm gears (24:1) are self-locking: a motor with no drive (PWM 0), or a
   stopped board, holds its joint where it is. A bend in torque mode at
   setpoint 0 is the exception: the torque loop makes it compliant, and an
-  inner bend is closed by the outer one's push (``_follow_outer``).
+  inner bend is closed by the outer one's push (``_follow_outer``). A held
+  bend keeps its spring's deflection too: a clamp held at PWM 0 (the safe
+  hold) still reads as pressing the wall, as in the physics twin.
 - Spring: effort in contact = commanded torque, TORQUE_MNM_PER_COUNT mNm per
   setpoint count (256 counts ~ 400 mNm, the peaks of Figs 6.2, 6.4),
   read back through the spring encoder (units.mnm_to_spring).
@@ -168,9 +170,10 @@ class PirateModel(CommandLatch):
         counts = self._drive(name)
         mode = self._mode(name)
         if counts is None or mode not in (CODE['pwm'], CODE['torque'], CODE['current'],
-                                          safety.COMMAND_CODES['torque_limit']):
-            self.effort[name] = 0.0
-            return  # stopped, or a mode the bend has not got: the worm holds
+                                          safety.COMMAND_CODES['torque_limit']) \
+                or (mode == CODE['pwm'] and counts == 0):
+            return  # stopped, PWM 0, or a mode the bend has not got: the worm holds
+                    # the joint and its spring's deflection (the effort reads on)
         if mode != CODE['pwm']:
             counts = self._torque_counts(name, counts)
         if counts == 0 and mode != CODE['pwm'] and name == CLAMPS[part][1]:

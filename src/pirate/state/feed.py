@@ -24,8 +24,11 @@ import time
 
 #: One state of the robot in SI units. ``angles`` maps joint name -> rad,
 #: ``orientation`` is the rear part's roll (rad, Fig 4.7), ``odometry`` mm
-#: (NaN when the robot reports none), ``stamp`` robot time in s.
-RobotView = collections.namedtuple('RobotView', 'angles orientation odometry velocity stamp')
+#: (NaN when the robot reports none), ``stamp`` robot time in s, ``efforts``
+#: joint name -> spring effort in mNm (None when the source has no springs;
+#: the clamp state needs them: a clamp means pressing the wall, issue 10).
+RobotView = collections.namedtuple('RobotView', 'angles orientation odometry velocity stamp efforts',
+                                   defaults=(None,))
 
 POLL_S = 0.02
 

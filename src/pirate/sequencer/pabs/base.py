@@ -84,6 +84,11 @@ class Pab(object):
     #: Server state after success: 'clamped' or 'unclamped' (Fig 4.2).
     leaves = 'clamped'
 
+    @classmethod
+    def for_goal(cls, goal):
+        """The PAB instance that runs ``goal`` (a PAB serving several goals reads it here)."""
+        return cls()
+
     def check(self, goal, view, guards):
         """Reason the goal cannot run, or None (called before accepting)."""
         return None

@@ -11,7 +11,7 @@ import itertools
 
 import pytest
 
-from pirate.sequencer.pabs import clamp_straight as cs
+from pirate.sequencer.pabs import clamp as cs
 from pirate.sequencer.pabs import drive, home
 from pirate.sequencer.pabs.base import ALWAYS, END, PabFailed, StateMachine, Transition
 
@@ -19,7 +19,8 @@ MACHINE = cs.MACHINE
 NONE, CUSTOM, FULL = cs.NONE, cs.CUSTOM, cs.FULL
 
 ALL_FACTS = [cs.Facts(*values) for values in itertools.product(
-    (True, False), (True, False), (True, False), (NONE, CUSTOM, FULL), (NONE, CUSTOM, FULL), (0, 1, 2))]
+    (True, False), (True, False), (True, False), (NONE, CUSTOM, FULL), (NONE, CUSTOM, FULL), (0, 1, 2),
+    (True, False))]
 
 #: What each state's action guarantees about the facts read right after it.
 POSTCONDITION = {
@@ -32,7 +33,7 @@ POSTCONDITION = {
     cs.UNCLAMPING_REAR: lambda f: f.rear == NONE,
     cs.UNCLAMPING_FRONT: lambda f: f.front == NONE,
     cs.ROTATING_REAR: lambda f: f.rear == NONE,
-    cs.ROTATING_FRONT: lambda f: f.front == NONE,
+    cs.ROTATING_FRONT: lambda f: f.front == NONE and not f.limited,
 }
 
 #: The step name each state's action shows up as in the report's tables.
@@ -78,6 +79,28 @@ NON_NOMINAL = (dict(nominal_start=False, straight=False, aligned=True), [
     ('clamp rear', dict(rear=FULL)),
     ('unclamp front partial', dict(front=NONE)),
     ('rotate front', dict(aligned=True)),          # "rotate front (to 0)"
+    ('clamp front', dict(front=FULL)),
+])
+
+
+# Issue 10's livelock: rear nominal but not straight, rotation at its +0.7
+# rad limit. The first rotate rear is clipped (no motion); the front is then
+# re-set upright, which brings the rotation back, and the rear turns again.
+LIMITED = (dict(nominal_start=True, straight=False, aligned=False), [
+    ('move front', dict(lift=2)),
+    ('clamp rear', dict(rear=FULL)),
+    ('clamp front', dict(front=FULL)),
+    ('unclamp rear partial', dict(rear=NONE)),
+    ('rotate rear', dict(limited=True)),           # target clipped at 0.7 rad
+    ('clamp rear', dict(rear=FULL)),
+    ('unclamp front partial', dict(front=NONE)),
+    ('rotate front', dict(limited=False)),         # eq 5.1: front upright
+    ('clamp front', dict(front=FULL)),
+    ('unclamp rear partial', dict(rear=NONE)),
+    ('rotate rear', dict(straight=True)),
+    ('clamp rear', dict(rear=FULL)),
+    ('unclamp front partial', dict(front=NONE)),
+    ('rotate front', dict(aligned=True)),
     ('clamp front', dict(front=FULL)),
 ])
 
@@ -131,7 +154,7 @@ def test_end_only_when_clamped_straight_and_aligned():
 
 def walk(start, steps):
     """Drive MACHINE with the facts of an experiment; return the step names taken."""
-    facts = cs.Facts(front=NONE, rear=NONE, lift=0, **start)
+    facts = cs.Facts(front=NONE, rear=NONE, lift=0, limited=False, **start)
     state = MACHINE.next(MACHINE.initial, facts)
     taken = []
     for _, changes in steps:
@@ -143,14 +166,15 @@ def walk(start, steps):
     return taken
 
 
-@pytest.mark.parametrize('experiment', [SIMPLE, NOMINAL, NON_NOMINAL], ids=['6.1', '6.2', '6.3'])
+@pytest.mark.parametrize('experiment', [SIMPLE, NOMINAL, NON_NOMINAL, LIMITED],
+                         ids=['6.1', '6.2', '6.3', 'rotation at its limit'])
 def test_report_step_lists(experiment):
     start, steps = experiment
     assert walk(start, steps) == [name for name, _ in steps]
 
 
 def test_already_clamped_straight_ends_at_once():
-    facts = cs.Facts(True, True, True, FULL, FULL, 2)
+    facts = cs.Facts(True, True, True, FULL, FULL, 2, False)
     assert MACHINE.next(cs.CHANGE_MODES, facts) == END
 
 
@@ -160,12 +184,12 @@ def test_front_clamp_after_lifting_follows_the_start(nominal_start, expected):
     # The rear is already clamped (e.g. a second goal after a cancel): a
     # nominal start clamps the front with the full guards, a non-nominal
     # start with the custom ones (Table 5.3).
-    facts = cs.Facts(nominal_start, False, True, NONE, FULL, 2)
+    facts = cs.Facts(nominal_start, False, True, NONE, FULL, 2, False)
     assert cs.MACHINE.next(cs.MOVING_FRONT, facts) == expected
 
 
 def test_next_refuses_no_or_several_transitions():
-    facts = cs.Facts(True, True, True, FULL, CUSTOM, 2)    # no exit of clamping rear fits
+    facts = cs.Facts(True, True, True, FULL, CUSTOM, 2, False)    # no exit of clamping rear fits
     with pytest.raises(PabFailed) as info:
         MACHINE.next(cs.CLAMPING_REAR, facts)
     assert 'no transition' in str(info.value) and 'rear=custom' in str(info.value)
@@ -183,13 +207,18 @@ def test_inconsistent_machines_are_refused():
         StateMachine('a', [Transition('a', END, ALWAYS), Transition('c', END, ALWAYS)])
 
 
-@pytest.mark.parametrize('machine, path', [
-    (home.MACHINE, [home.CHANGE_MODES, home.UNCLAMPING_FRONT, home.UNCLAMPING_REAR, home.MOVING_FRONT_DOWN]),
-    (drive.MACHINE, [drive.DRIVING, drive.STOPPING]),
+@pytest.mark.parametrize('machine, facts, path', [
+    (home.MACHINE, home.Facts(aligned=True),
+     [home.CHANGE_MODES, home.UNCLAMPING_FRONT, home.UNCLAMPING_REAR, home.MOVING_FRONT_DOWN]),
+    (home.MACHINE, home.Facts(aligned=False),
+     [home.CHANGE_MODES, home.UNCLAMPING_FRONT, home.ALIGNING, home.UNCLAMPING_REAR, home.MOVING_FRONT_DOWN]),
+    (drive.MACHINE, None, [drive.DRIVING, drive.STOPPING]),
 ])
-def test_home_and_drive_are_linear(machine, path):
+def test_home_and_drive_paths(machine, facts, path):
+    # Home is the report's Fig 4.9 when aligned, and aligns while the rear
+    # still holds when not (issue 10); Drive is linear.
     state, walked = machine.initial, []
     while state != END:
         walked.append(state)
-        state = machine.next(state, None)
+        state = machine.next(state, facts)
     assert walked == path

@@ -1,4 +1,12 @@
-"""Clamp Straight (report 4.7.4.1, 5.10, Table D.1; SPEC 8).
+"""Clamp Straight and Clamp Sideways (report 4.7.4.1, 5.10, Table D.1; SPEC 8).
+
+One machine and one class clamp the robot at a target orientation (Fig
+4.7): upright (pi/2, Clamp Straight), lying on its left side (pi, Clamp
+Sideways LEFT) or on its right side (0, Clamp Sideways RIGHT). The report
+built the upright case; nothing in its table depends on which way is the
+target: "straight" and "nominal" are the regions of Table 5.4 measured
+around the target (config/sequencer.yaml gives them around pi/2), and eqs
+5.1 and 5.2 turn toward the target instead of toward pi/2 (issue 10.2).
 
 The transition table below is Table D.1 reconciled with the step lists the
 report observed (Tables 6.1-6.3), because the extracted Table D.1 is damaged
@@ -17,12 +25,24 @@ limited to 0.7 rad). Where it differs, the step lists win:
   ("rotate front (to 0)" in Tables 6.2 and 6.3).
 
 Facts are read after every action: clamp states are remembered from the
-primitives that succeeded; orientation and rotation come from the robot.
+primitives that succeeded (the start's from what the robot senses, angles
+AND springs, :mod:`pirate.sequencer.clamp_state`); orientation and rotation
+come from the robot.
+
+A rotate rear whose eq 5.2 target lies beyond the +-0.7 rad limit has not
+done its job (issue 10: the rear nominal but not straight with the rotation
+at its limit looped unclamp rear / rotate rear / clamp rear). The fact
+``limited`` remembers it: the rear is clamped again where it is, and the
+front is unclamped and turned upright (eq 5.1), which brings the rotation
+back from its limit, before the rear turns again.
 """
 import collections
 import math
 
 from pirate.robot import safety
+from pirate.sequencer import clamp_state
+from pirate.sequencer.guards import CLAMP_BENDS
+from pirate.sequencer.pabs import codes
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, StateMachine, Transition
 
 CHANGE_MODES = 'change control modes'
@@ -39,8 +59,9 @@ CLAMPING_FRONT_CUSTOM = 'clamping front custom'
 NONE, CUSTOM, FULL = 'none', 'custom', 'full'
 
 #: What the guards look at. front/rear: NONE, CUSTOM or FULL clamp;
-#: lift: 0 down, 1 first non-nominal lift, 2 lifted for a full front clamp.
-Facts = collections.namedtuple('Facts', 'nominal_start straight aligned front rear lift')
+#: lift: 0 down, 1 first non-nominal lift, 2 lifted for a full front clamp;
+#: limited: the last rotate rear was clipped at the rotation limit.
+Facts = collections.namedtuple('Facts', 'nominal_start straight aligned front rear lift limited')
 
 
 def _g(text, test):
@@ -66,11 +87,12 @@ TRANSITIONS = (
     Transition(MOVING_FRONT, UNCLAMPING_REAR, _g('rear clamped AND front clamped',
                                                  lambda f: f.rear != NONE and f.front != NONE)),
     Transition(CLAMPING_REAR, CLAMPING_FRONT, _g('front not clamped', lambda f: f.front == NONE)),
-    Transition(CLAMPING_REAR, UNCLAMPING_REAR, _g('front clamped AND NOT straight',
-                                                  lambda f: f.front != NONE and not f.straight)),
+    Transition(CLAMPING_REAR, UNCLAMPING_REAR, _g('front clamped AND NOT straight AND NOT limited',
+                                                  lambda f: f.front != NONE and not f.straight and not f.limited)),
     Transition(CLAMPING_REAR, UNCLAMPING_FRONT,
-               _g('front clamped AND straight AND (front custom OR NOT aligned)',
-                  lambda f: f.front != NONE and f.straight and (f.front == CUSTOM or not f.aligned))),
+               _g('front clamped AND ((straight AND (front custom OR NOT aligned)) OR (NOT straight AND limited))',
+                  lambda f: f.front != NONE and ((f.straight and (f.front == CUSTOM or not f.aligned))
+                                                 or (not f.straight and f.limited)))),
     Transition(CLAMPING_REAR, END, DONE),
     Transition(CLAMPING_FRONT, CLAMPING_REAR, _g('rear not clamped', lambda f: f.rear == NONE)),
     Transition(CLAMPING_FRONT, UNCLAMPING_REAR, _g('rear clamped AND (NOT straight OR rear custom)',
@@ -96,9 +118,34 @@ TRANSITIONS = (
 MACHINE = StateMachine(CHANGE_MODES, TRANSITIONS)
 
 
+#: What a sensed clamp class means to this table at the start: a part only
+#: partly clamped (or short of the wall) has to be clamped again.
+START_CLAMP = {clamp_state.FULL: FULL, clamp_state.CUSTOM: CUSTOM}
+
+
+UPRIGHT = math.pi / 2
+#: Target orientation (rad, Fig 4.7) per goal: CLAMP_STRAIGHT, and
+#: CLAMP_SIDEWAYS by its option.
+SIDES = {codes.LEFT: ('LEFT', math.pi), codes.RIGHT: ('RIGHT', 0.0)}
+
+
+def target_of(goal):
+    """Target orientation (rad) of a clamp goal, or None when it names no side."""
+    if goal.name == codes.CLAMP_STRAIGHT:
+        return UPRIGHT
+    side = SIDES.get(goal.option)
+    return side[1] if side else None
+
+
 def in_region(orientation, region):
     """True when ``orientation`` (rad) lies in the (low, high) ``region``."""
     return region[0] <= orientation <= region[1]
+
+
+def region_around(guards, name, target):
+    """Region ``name`` of Table 5.4 (given around pi/2) moved to ``target`` (rad)."""
+    low, high = guards.region(name)
+    return low - UPRIGHT + target, high - UPRIGHT + target
 
 
 def limit_rotation(rad):
@@ -107,24 +154,34 @@ def limit_rotation(rad):
     return max(-top, min(top, rad))
 
 
-class ClampStraight(Pab):
-    """Clamp upright (pi/2) from any start the guards allow."""
+class Clamp(Pab):
+    """Clamp at ``target`` rad (upright or on a side) from any start the guards allow."""
 
-    name = 'Clamp Straight'
     machine = MACHINE
     leaves = 'clamped'
 
-    def __init__(self):
+    @classmethod
+    def for_goal(cls, goal):
+        return cls(target_of(goal))
+
+    def __init__(self, target=UPRIGHT):
+        self.target = target
+        self.name = 'Clamp Straight' if target == UPRIGHT else 'Clamp Sideways'
         self.nominal_start = True
         self.clamp = {'front': NONE, 'rear': NONE}
         self.lift = 0
         self.front_custom_done = False
+        self.limited = False
 
     def check(self, goal, view, guards):
-        nominal = in_region(view.orientation, guards.region('nominal'))
+        if self.target is None:
+            return ('CLAMP_SIDEWAYS needs a side: option LEFT (%d) or RIGHT (%d), not %r'
+                    % (min(SIDES), max(SIDES), goal.option))
+        nominal = in_region(view.orientation, region_around(guards, 'nominal', self.target))
         if not nominal and not guards.has('clamp_rear_custom'):
-            return ('orientation %.2f rad is non-nominal and the %d mm guards have no custom '
-                    'clamp (report 5.10: non-nominal only in 90 mm)' % (view.orientation, guards.pipe_diameter))
+            return ('orientation %.2f rad is non-nominal for a target of %.2f rad and the %d mm guards '
+                    'have no custom clamp (report 5.10: non-nominal only in 90 mm)'
+                    % (view.orientation, self.target, guards.pipe_diameter))
         return None
 
     def actions(self):
@@ -144,22 +201,30 @@ class ClampStraight(Pab):
     def facts(self, ctx):
         view = ctx.feed.latest()
         return Facts(nominal_start=self.nominal_start,
-                     straight=in_region(view.orientation, ctx.guards.region('straight')),
+                     straight=in_region(view.orientation, region_around(ctx.guards, 'straight', self.target)),
                      aligned=abs(view.angles['rotation']) <= ctx.guards.align_tolerance,
-                     front=self.clamp['front'], rear=self.clamp['rear'], lift=self.lift)
+                     front=self.clamp['front'], rear=self.clamp['rear'], lift=self.lift,
+                     limited=self.limited)
 
     # --- actions ----------------------------------------------------------
     def _change_modes(self, ctx):
-        """Bends to torque, rotation to position (report 5.10), and read the start."""
+        """Bends to torque, rotation to position (report 5.10), and read the start.
+
+        A part that starts clamped keeps its bends' mode: after a cancel the
+        worms hold it at PWM 0, and torque mode at setpoint 0 would let the
+        clamp go (twin: the rear opened to -0.44 rad while the retried goal
+        clamped the front, and the goal "succeeded"; bench/pab_clamp_sweep).
+        """
         view = ctx.feed.latest()
-        self.nominal_start = in_region(view.orientation, ctx.guards.region('nominal'))
+        self.nominal_start = in_region(view.orientation, region_around(ctx.guards, 'nominal', self.target))
+        sensed = clamp_state.sensed(ctx.guards, view)._asdict()
         for part in ('front', 'rear'):
-            if ctx.guards.pair('clamp', part).closed(view.angles):
-                self.clamp[part] = FULL
+            self.clamp[part] = START_CLAMP.get(sensed[part], NONE)
+            if self.clamp[part] == NONE:
+                for bend in CLAMP_BENDS[part]:
+                    ctx.prims.change_control_mode(bend, 'torque')
         if view.angles['front_tilt'] >= ctx.guards.move('move_front').guard:
             self.lift = 2
-        for bend in ('bend_i', 'bend_ii', 'bend_iii', 'bend_iv'):
-            ctx.prims.change_control_mode(bend, 'torque')
         ctx.prims.change_control_mode('rotation', 'position')
         ctx.prims.change_control_mode('front_tilt', 'pwm')
 
@@ -188,21 +253,23 @@ class ClampStraight(Pab):
         self.clamp[part] = NONE
 
     def _rotate_rear(self, ctx):
-        """Eq 5.2 as an increment: turn the free rear part to upright."""
+        """Eq 5.2 as an increment: turn the free rear part to the target."""
         view = ctx.feed.latest()
-        target = view.angles['rotation'] + (math.pi / 2 - view.orientation)
+        target = view.angles['rotation'] + (self.target - view.orientation)
+        self.limited = limit_rotation(target) != target
         ctx.prims.rotate(limit_rotation(target), name='rotate rear')
 
     def _rotate_front(self, ctx):
-        """Eq 5.1: turn the free front part upright, or align if the rear is."""
+        """Eq 5.1: turn the free front part to the target, or align if the rear is there."""
         view = ctx.feed.latest()
-        if in_region(view.orientation, ctx.guards.region('straight')):
+        self.limited = False
+        if in_region(view.orientation, region_around(ctx.guards, 'straight', self.target)):
             ctx.prims.rotate(0.0, name='rotate front (align)')
         else:
-            ctx.prims.rotate(limit_rotation(view.orientation - math.pi / 2), name='rotate front')
+            ctx.prims.rotate(limit_rotation(view.orientation - self.target), name='rotate front')
 
     def summary(self, ctx):
         view = ctx.feed.latest()
-        return ('clamped straight at %.3f rad, rotation %.3f rad, %d motion primitives'
-                % (view.orientation, view.angles['rotation'], len(ctx.prims.executed)))
+        return ('clamped at %.3f rad (target %.3f rad), rotation %.3f rad, %d motion primitives'
+                % (view.orientation, self.target, view.angles['rotation'], len(ctx.prims.executed)))
 

@@ -1,0 +1,7 @@
+"""The goal codes of Pirate.action, for the pure core (no message import).
+
+``name`` codes (SPEC 6) and ``option`` codes; a unit test checks they match
+the generated message.
+"""
+CLAMP_STRAIGHT, CLAMP_SIDEWAYS, T_JOINT, MITRE_BEND, DRIVE, HOME = range(6)
+NONE, LEFT, RIGHT, STRAIGHT = range(4)

@@ -1,0 +1,63 @@
+#!/usr/bin/env python3
+"""rostest: a clamp PAB (Clamp Straight / Clamp Sideways) over ROS with a
+real action client, against the physics twin (sim time), issue 10.
+
+The goal ``~goal`` succeeds with the primitives ``~expected`` and leaves the
+rear in the straight region of Table 5.4 moved to ``~target`` (rad), the
+server Idle Clamped; Home is sent and cancelled at a random instant of sim
+time (seed printed): PREEMPTED with the safe hold on the wire (or SUCCEEDED
+when it was faster than the draw); sent again it leaves the robot Idle
+Unclamped. (A clamp cancelled and retried may need the re-adjusting
+rotations, which the twin does not converge yet: notes/issue-10.md.)
+Built on seq_experiment's helpers.
+"""
+import math
+import random
+import time
+
+import rospy
+import rostest
+from actionlib_msgs.msg import GoalStatus
+
+from seq_experiment import SequencerTest
+
+HOME = {'name': 5}
+STRAIGHT_BAND = (1.52 - math.pi / 2, 1.62 - math.pi / 2)   # Table 5.4 around the target
+
+
+class PabClampTest(SequencerTest):
+    """One clamp goal, Home cancelled at random, Home again."""
+
+    def _assert_at_target(self):
+        offset = self.state.orientation - float(rospy.get_param('~target'))
+        self.assertTrue(STRAIGHT_BAND[0] <= offset <= STRAIGHT_BAND[1], self.state.orientation)
+
+    def _run(self, spec):
+        self._send(spec)
+        state, result, text = self._finish()
+        self.assertEqual(state, GoalStatus.SUCCEEDED, '%s: %s' % (spec, text))
+        return result
+
+    def test_scenario(self):
+        spec = rospy.get_param('~goal')
+        result = self._run(spec)
+        self.assertEqual(self._assert_trace(result), rospy.get_param('~expected'))
+        self.assertEqual(result.server_state, 'Idle Clamped')
+        self._assert_at_target()
+        seed = int(time.time() * 1000) % 100000
+        cancel_after = random.Random(seed).uniform(0.2, float(rospy.get_param('~cancel_within')))
+        rospy.loginfo('pab_clamp: Home cancelled after %.2f sim s (seed %d)', cancel_after, seed)
+        self._send(HOME)
+        self._wait_sim(cancel_after)
+        cancelled_at = time.monotonic()
+        self.client.cancel_goal()
+        state, result, text = self._finish()
+        self.assertIn(state, (GoalStatus.PREEMPTED, GoalStatus.SUCCEEDED), 'seed %d: %s' % (seed, text))
+        if state == GoalStatus.PREEMPTED:
+            self._assert_trace(result, outcome_last='preempted')
+            self._wait(lambda: self._safe_after(cancelled_at), 'a safe setpoint array', 10.0)
+        self.assertEqual(self._run(HOME).server_state, 'Idle Unclamped', 'seed %d' % seed)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('pirate', 'pab_clamp', PabClampTest)

@@ -1,0 +1,68 @@
+"""Clamp Sideways (issue 10.2): the Clamp Straight machine at another target.
+
+On the kinematic robot (report Table 4.5 only, no physics): from start
+rolls every 15 degrees of the working range 0..pi, Clamp Sideways LEFT (pi)
+and RIGHT (0) and Clamp Straight (pi/2) end with both parts clamped, the
+rear in the straight region around the target and the rotation aligned;
+the regions are Table 5.4's moved to the target.
+"""
+import math
+
+import pytest
+
+from pirate.sequencer.pabs import codes
+from pirate.sequencer.pabs.clamp import UPRIGHT, Clamp, region_around, target_of
+
+from kinematic_robot import BOOK, KinematicRobot, run
+
+GUARDS = BOOK.for_diameter(90)
+TARGETS = {'RIGHT': (codes.RIGHT, 0.0), 'STRAIGHT': (codes.NONE, UPRIGHT), 'LEFT': (codes.LEFT, math.pi)}
+ROLLS = [math.radians(d) for d in range(0, 181, 15)]
+
+
+class Goal(object):
+    def __init__(self, name, option):
+        self.name, self.option = name, option
+
+
+def goal_for(side):
+    option, _ = TARGETS[side]
+    return Goal(codes.CLAMP_STRAIGHT if side == 'STRAIGHT' else codes.CLAMP_SIDEWAYS, option)
+
+
+@pytest.mark.parametrize('side', sorted(TARGETS))
+def test_target_of_each_goal(side):
+    assert target_of(goal_for(side)) == TARGETS[side][1]
+    assert Clamp.for_goal(goal_for(side)).name == ('Clamp Straight' if side == 'STRAIGHT' else 'Clamp Sideways')
+
+
+def test_a_sideways_goal_without_a_side_has_no_target():
+    assert target_of(Goal(codes.CLAMP_SIDEWAYS, codes.NONE)) is None
+    assert 'side' in Clamp.for_goal(Goal(codes.CLAMP_SIDEWAYS, codes.STRAIGHT)).check(
+        Goal(codes.CLAMP_SIDEWAYS, codes.STRAIGHT), None, GUARDS)
+
+
+@pytest.mark.parametrize('target', [0.0, UPRIGHT, math.pi])
+def test_regions_are_measured_around_the_target(target):
+    for name in ('straight', 'nominal'):
+        low, high = GUARDS.region(name)
+        moved = region_around(GUARDS, name, target)
+        assert moved[1] - moved[0] == pytest.approx(high - low)
+        assert (moved[0] + moved[1]) / 2 - target == pytest.approx((low + high) / 2 - UPRIGHT)
+
+
+@pytest.mark.parametrize('side', sorted(TARGETS))
+@pytest.mark.parametrize('roll', ROLLS, ids=['%d deg' % round(math.degrees(r)) for r in ROLLS])
+def test_clamp_at_the_target_from_any_roll(side, roll):
+    target = TARGETS[side][1]
+    robot = KinematicRobot(roll, 0.0, front_tilt=0.0)
+    pab = Clamp.for_goal(goal_for(side))
+    message = run(pab, robot, goal_for(side))
+    straight = region_around(GUARDS, 'straight', target)
+    assert straight[0] <= robot.rear <= straight[1], (robot.rear, robot.executed)
+    assert abs(robot.rotation) <= GUARDS.align_tolerance
+    assert robot.clamped == {'front': True, 'rear': True}
+    assert 'target %.3f' % target in message
+    nominal = region_around(GUARDS, 'nominal', target)
+    custom = [step for step in robot.executed if 'custom' in step]
+    assert bool(custom) == (not nominal[0] <= roll <= nominal[1])   # custom clamps only non-nominal

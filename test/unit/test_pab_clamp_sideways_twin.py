@@ -1,0 +1,35 @@
+"""Clamp Sideways in the physics twin (issue 10.2), 90 and 110 mm.
+
+The robot lying on the target side clamps there with the report's simple
+sequence (move front, clamp rear, clamp front), ends pressing the wall with
+both V's (the apex wheels in contact, ground truth read by the test only)
+at the target roll. Starts away from the target need the re-adjusting
+rotations, which the twin does not yet converge for Clamp Straight either
+(notes/issue-10.md); they are covered on the kinematic robot.
+"""
+import math
+
+import pytest
+
+from pirate.sim.harness import SimHarness
+from test_sequencer_sim import CLAMP_SIMPLE, run_bounded
+from test_sim_twin_sequencer import robot_wait
+
+SPEEDUP = 10.0
+CLAMP_SIDEWAYS, LEFT, RIGHT = 1, 1, 2
+APEX_WHEELS = {23, 26}
+
+
+@pytest.mark.parametrize('mm', [90, 110])
+@pytest.mark.parametrize('option, target', [(RIGHT, 0.0), (LEFT, math.pi)], ids=['RIGHT', 'LEFT'])
+def test_simple_clamp_sideways_on_the_twin(mm, option, target):
+    with SimHarness(speedup=SPEEDUP, world='straight_%d' % mm, orientation=target) as h:
+        reason, outcome = run_bounded(h, h.goal(CLAMP_SIDEWAYS, pipe_diameter=mm, option=option))
+        assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+        assert h.prims.executed == CLAMP_SIMPLE
+        assert {fb.server_state for fb in h.feedback if fb.pab_state} == {'Clamp Sideways'}   # Fig 4.2
+        robot_wait(h, 2.0)
+        truth = h.ground_truth()
+        assert abs(truth['roll'] - target) < 0.1 and abs(truth['front_roll'] - target) < 0.1, truth['roll']
+        assert APEX_WHEELS <= set(truth['wheel_contacts'])
+        assert h.server.status() == 'Idle Clamped'
