@@ -291,7 +291,7 @@ def test_set_plus_record_sends_no_limits_all_once_per_press(rig):
 @pytest.mark.parametrize('channel,value,reason', [
     (99, 64, 'not on the panel map'), (SLIDER_BEND_I, 300, 'outside 0-127'),
     (SLIDER_BEND_I, -1, 'outside 0-127'), (SLIDER_BEND_I, 1.5, 'integers'),
-    (46, 127, 'not used')])
+    (32, 127, 'not used')])
 def test_bad_input_logged_once_and_ignored(rig, channel, value, reason):
     rig.play()
     before = rig.setpoint.get_all()

@@ -6,6 +6,7 @@ import pytest
 import yaml
 
 from pirate.robot import tables
+from pirate.msg import PirateGoal
 from pirate.panel import config as panel_config
 
 ROOT = os.path.join(os.path.dirname(__file__), '..', '..')
@@ -40,9 +41,8 @@ SPEC5 = {
     67: ('calibrate', 'bend_ii', (M,)), 68: ('calibrate', 'bend_i', (M,)),
     69: ('calibrate', 'front_tilt', (M,)), 70: ('calibrate', 'camera_tilt', (M,)),
 }
-UNUSED = (46, 48, 64, 71)
 # Free in Table E.2, PAB buttons here (issue 13: every PAB from the panel).
-SPEC5.update({44: ('pab', None, (P,)), 61: ('pab', None, (P,)), 62: ('pab', None, (P,))})
+SPEC5.update({channel: ('pab', None, (P,)) for channel in (44, 46, 48, 61, 62, 64, 71)})
 
 
 @pytest.fixture(scope='module')
@@ -58,13 +58,8 @@ def test_channel_matches_spec5(cfg, channel):
     assert entry.control and entry.function   # labelled for the operator
 
 
-@pytest.mark.parametrize('channel', UNUSED)
-def test_unused_channels_do_nothing(cfg, channel):
-    assert cfg.channels[channel].action == 'none' and cfg.channels[channel].modes == ()
-
-
 def test_no_other_channels(cfg):
-    assert set(cfg.channels) == set(SPEC5) | set(UNUSED)
+    assert set(cfg.channels) == set(SPEC5)
 
 
 def test_s_buttons_toggle_pwm_and_the_joints_other_mode(cfg):
@@ -100,6 +95,17 @@ def test_pab_goals_use_the_action_codes(cfg):
     goal = cfg.channels[44].goal
     assert (goal.name, goal.option) == (codes['T_JOINT'], codes['STRAIGHT'])
     assert cfg.channels[58].goal.name == codes['HOME'] and cfg.channels[62].goal.name == codes['DRIVE']
+
+
+def test_every_pab_of_the_action_has_a_button(cfg):
+    """Every PAB of Pirate.action, with each option it takes, is on the panel."""
+    codes = {name: getattr(PirateGoal, name) for name in ('CLAMP_STRAIGHT', 'CLAMP_SIDEWAYS', 'T_JOINT',
+                                                          'MITRE_BEND', 'DRIVE', 'HOME', 'LEFT', 'RIGHT')}
+    goals = {(e.goal.name, e.goal.option) for e in cfg.channels.values() if e.action == 'pab'}
+    names = {name for name, _ in goals}
+    assert {codes[n] for n in ('CLAMP_STRAIGHT', 'CLAMP_SIDEWAYS', 'T_JOINT', 'MITRE_BEND', 'DRIVE', 'HOME')} <= names
+    for sided in ('CLAMP_SIDEWAYS', 'MITRE_BEND'):
+        assert {(codes[sided], codes['LEFT']), (codes[sided], codes['RIGHT'])} <= goals
 
 
 @pytest.mark.parametrize('goal,needle', [
