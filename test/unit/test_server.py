@@ -216,7 +216,6 @@ class Broken(Pab):
 
 class Instant(Pab):
     name = 'Instant'
-    leaves = 'clamped'
 
     def run(self, ctx):
         return 'nothing to do'

@@ -111,7 +111,6 @@ class PirateManager(object):
                                    pipe_diameter=int(rospy.get_param('~pipe_diameter', 90)),
                                    authority=self._panel_refusal)
         self._progress_at = 0.0
-        self._goal_lock = threading.Lock()
         self._closing = threading.Event()
         self._current = None
         self._pending = threading.Condition()

@@ -81,8 +81,6 @@ class Pab(object):
     machine = None
     #: True when the PAB needs the robot clamped to start (Fig 4.2: Drive).
     requires_clamped = False
-    #: Server state after success: 'clamped' or 'unclamped' (Fig 4.2).
-    leaves = 'clamped'
 
     @classmethod
     def for_goal(cls, goal):

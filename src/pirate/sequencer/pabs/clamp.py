@@ -158,7 +158,6 @@ class Clamp(Pab):
     """Clamp at ``target`` rad (upright or on a side) from any start the guards allow."""
 
     machine = MACHINE
-    leaves = 'clamped'
 
     @classmethod
     def for_goal(cls, goal):

@@ -40,7 +40,6 @@ class Drive(Pab):
     name = 'Drive'
     machine = MACHINE
     requires_clamped = True
-    leaves = 'clamped'
 
     def __init__(self):
         self.start_mm = None

@@ -42,7 +42,6 @@ class Home(Pab):
 
     name = 'Home'
     machine = MACHINE
-    leaves = 'unclamped'
 
     def actions(self):
         return {
