@@ -70,13 +70,7 @@ class Executive(object):
     # --- operator side, any thread ----------------------------------------
     def pause(self):
         """Hold the robot safe and wait for :meth:`resume`."""
-        with self._cond:
-            self._paused = True
-            running = self._running
-            self._cond.notify_all()
-        self._say('pause asked')
-        if running:
-            self.robot.cancel()
+        self._stop_running('pause', '_paused')
 
     def resume(self):
         """Go on with the step that was paused."""
@@ -87,11 +81,16 @@ class Executive(object):
 
     def cancel(self):
         """End the mission: the running goal is cancelled, nothing else runs."""
+        self._stop_running('cancel', '_cancelled')
+
+    def _stop_running(self, word, flag):
+        """Raise ``flag`` and cancel the goal running now, if any (the server
+        leaves the robot in its safe hold)."""
         with self._cond:
-            self._cancelled = True
+            setattr(self, flag, True)
             running = self._running
             self._cond.notify_all()
-        self._say('cancel asked')
+        self._say('%s asked' % word)
         if running:
             self.robot.cancel()
 
