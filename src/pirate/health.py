@@ -67,3 +67,14 @@ def command_writers(rogues, owner):
                       'goal cancelled, robot held and stopped'
                       % (', '.join('%s on %s' % (sender, topic) for topic, sender in rogues), owner), values)
     return Report(OK, 'only %s writes the command topics' % owner, values)
+
+
+def small_states(stale, reason, age_s, boards):
+    """The Small State stream as the state node sees it: every board fresh,
+    or stale with the reason (the silent boards named, issue 14.1)."""
+    values = [('age_s', '%.3f' % age_s), ('boards', boards)]
+    if math.isinf(age_s):
+        return Report(ERROR, 'no Small State yet (robot end running? serial link up?)', values)
+    if stale:
+        return Report(ERROR, '%s: the state is stale, goals are refused' % reason, values)
+    return Report(OK, 'all %d boards fresh' % boards, values)

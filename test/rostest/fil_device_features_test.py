@@ -152,7 +152,7 @@ class DeviceFeaturesTest(unittest.TestCase):
 
     def _diagnostic(self, key):
         values = [v.value for a in list(self.diagnostics) for s in a.status
-                  if s.name.startswith('pirate: serial link') for v in s.values if v.key == key]
+                  if s.name.endswith(': serial link') for v in s.values if v.key == key]
         return values[-1] if values else None
 
     def test_other_protocol_version_on_diagnostics(self):

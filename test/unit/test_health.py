@@ -46,3 +46,10 @@ def test_command_writers_name_the_rogue_as_an_error_and_are_ok_alone():
     assert rogue.level == health.ERROR
     assert '/rostopic_1 on /pirate/setpoint_array' in rogue.message
     assert ('/pirate/setpoint_array', '/rostopic_1') in rogue.values
+
+
+def test_small_states_name_the_silent_boards():
+    assert health.small_states(False, '', 0.05, 9).level == health.OK
+    assert health.small_states(False, '', float('inf'), 9).level == health.ERROR
+    stale = health.small_states(True, 'board 22 silent', 0.4, 9)
+    assert stale.level == health.ERROR and 'board 22 silent' in stale.message

@@ -23,7 +23,7 @@ subscribes to is re-sent whenever the link comes up and whenever the
 device announces that subscriber again (after a reset), so control modes
 reach the boards before any setpoint.
 
-Diagnostics (diagnostic_msgs/DiagnosticArray on /diagnostics) at 1 Hz; a
+Diagnostics through diagnostic_updater (task "serial link") at 1 Hz; a
 frame of another rosserial protocol version makes it ERROR with
 rosserial_python's words, and is logged as an error.
 """
@@ -31,9 +31,10 @@ import io
 import threading
 import time
 
+import diagnostic_updater
 import rospy
 import roslib.message
-from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
+from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 
 from pirate.link import session as sessions
 from pirate.link.port import SerialLink
@@ -69,7 +70,6 @@ class RosserialHost(object):
         self.counts = dict(frames_out=0, link_ups=0, link_downs=0, deserialize_errors=0,
                            not_up_dropped=0, oversize_refused=0, params_served=0)
         self.services = ServiceBridge(self._send_frame, self._warn)
-        self._diag_pub = rospy.Publisher('/diagnostics', DiagnosticArray, queue_size=2)
         self._threads = [threading.Thread(target=self._read_loop, name='rosserial-reader'),
                          threading.Thread(target=self._write_loop, name='rosserial-writer')]
 
@@ -91,7 +91,10 @@ class RosserialHost(object):
         for thread in self._threads:
             thread.daemon = True
             thread.start()
-        rospy.Timer(rospy.Duration(1.0), lambda _event: self.publish_diagnostics())
+        updater = diagnostic_updater.Updater()
+        updater.setHardwareID(self.link.port_name)
+        updater.add('serial link', self._fill_diagnostics)
+        rospy.Timer(rospy.Duration(1.0), lambda _event: updater.update())
         rospy.on_shutdown(self.shutdown)
 
     def shutdown(self):
@@ -349,7 +352,10 @@ class RosserialHost(object):
         status.values = [KeyValue(k, str(v)) for k, v in sorted(values.items())]
         return status
 
-    def publish_diagnostics(self):
-        array = DiagnosticArray(status=[self.diagnostic_status()])
-        array.header.stamp = rospy.Time.now()
-        self._diag_pub.publish(array)
+    def _fill_diagnostics(self, stat):
+        """diagnostic_updater task: :meth:`diagnostic_status` into ``stat``."""
+        status = self.diagnostic_status()
+        stat.summary(status.level, status.message)
+        for pair in status.values:
+            stat.add(pair.key, pair.value)
+        return stat

@@ -11,10 +11,12 @@ import math
 import threading
 import time
 
+import diagnostic_updater
 import rospy
 from sensor_msgs.msg import Imu, JointState
 
-from pirate import names
+from pirate import health, names
+from pirate.robot import tables
 from pirate.msg import RobotState, SmallState
 from pirate.srv import ImuSensor, ImuSensorResponse, JointSensors, JointSensorsResponse
 from pirate.state.assembler import BadState, StateAssembler, stale_reason
@@ -45,6 +47,16 @@ class PirateStateNode(object):
         rospy.Service(names.IMU_SENSOR_SERVICE, ImuSensor, self._imu_sensor)
         rospy.Subscriber(names.SMALL_STATE_TOPIC, SmallState, self._on_small_state, queue_size=50)
         rospy.Timer(rospy.Duration(0.1), self._check_stale)
+        updater = diagnostic_updater.Updater()
+        updater.setHardwareID('pirate')
+        updater.add('Small State', self._diagnose)
+        rospy.Timer(rospy.Duration(1.0), lambda _event: updater.update())
+
+    def _diagnose(self, stat):
+        """diagnostic_updater task: every board fresh, or which are silent."""
+        snap = self._snapshot()
+        return health.fill(stat, health.small_states(snap.stale, stale_reason(snap.silent, snap.age), snap.age,
+                                                     len(tables.BOARDS)))
 
     def _snapshot(self):
         with self._lock:
