@@ -191,3 +191,16 @@ def test_plan_mission_refuses_with_the_reason_and_exit_2(argv, reason, capsys):
     from pirate.supervisory import plan_cli
     assert plan_cli.main(argv) == 2
     assert reason in capsys.readouterr().err
+
+
+def test_run_mission_route_check_prints_the_plan_without_ros(capsys):
+    from pirate.supervisory import mission_node
+    assert mission_node.main(['run_mission', '--route', 'inspection_90', 'launch_pit', 'target', '--check']) == 0
+    out = capsys.readouterr().out
+    assert out.startswith('plan on inspection_90: launch_pit -> target') and 'MITRE_BEND' in out
+
+
+def test_run_mission_route_refuses_a_route_before_sending_anything(capsys):
+    from pirate.supervisory import mission_node
+    assert mission_node.main(['run_mission', '--route', 'inspection_90', 'launch_pit', 'nowhere']) == 2
+    assert "no point 'nowhere'" in capsys.readouterr().err

@@ -1,7 +1,9 @@
 """ROS edge of the mission runner: an actionlib client of the Pirate Server.
 
 Usage: ``rosrun pirate run_mission [--check] [MISSION.yaml]`` (default: the
-report's test mission). The mission is checked completely first (every
+report's test mission), or ``rosrun pirate run_mission --route MAP FROM TO
+[...]`` for a route over a pipe map, run by the mission executive
+(pirate.supervisory.route_client). The mission is checked completely first (every
 error with its line; exit 2); ``--check`` prints the plan and exits
 without a ROS master. Exits 0 when every step succeeded, 1 otherwise.
 
@@ -23,6 +25,7 @@ from actionlib_msgs.msg import GoalStatus
 
 from pirate import names, paths
 from pirate.sequencer.guards import load_files
+from pirate.supervisory import route_client
 from pirate.supervisory.mission import MissionError, MissionRunner, TracedPrimitive, load_mission, plan
 from pirate.msg import PirateAction, PirateGoal
 from pirate.srv import ServerStatus
@@ -99,7 +102,18 @@ def main(argv=None):
     parser.add_argument('--timeout', type=float, default=300.0, help='per goal, s of robot time')
     parser.add_argument('--check', action='store_true',
                         help='check the mission and print the plan; no ROS, nothing moves')
+    parser.add_argument('--route', nargs='+', metavar='MAP FROM TO',
+                        help='a route over a pipe map (world file or name; point names, in order), '
+                             'run by the mission executive')
+    parser.add_argument('--speed', type=float, default=0.0, help='--route: mm/s (0: config/supervisory.yaml)')
+    parser.add_argument('--level', default='full', choices=('full', 'confirm', 'manual'),
+                        help='--route: autonomy level')
+    parser.add_argument('--no-home', action='store_true', help='--route: end clamped, do not home')
     args = parser.parse_args(rospy.myargv(argv or sys.argv)[1:])
+    if args.route:
+        if args.mission or len(args.route) < 3:
+            parser.error('--route takes MAP FROM TO [...] and no mission file')
+        return route_client.run_route(args)
     path = args.mission or default_mission()
     try:
         mission, default_speed = _check(path)
