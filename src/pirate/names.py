@@ -26,4 +26,5 @@ MISSION_ACTION = '/pirate/mission'            # pirate/MissionAction (Supervisor
 MISSION_COMMAND_SERVICE = '/pirate/mission/command'   # pirate/MissionCommand: pause, resume, ...
 MISSION_POSE_TOPIC = '/pirate/mission/pose'   # geometry_msgs/PoseStamped, estimate on the map
 MISSION_ALONG_TOPIC = '/pirate/mission/along_mm'      # std_msgs/Float64, estimate along the path
+MISSION_MARKERS_TOPIC = '/pirate/mission/markers'     # visualization_msgs/MarkerArray: route, points, estimate
 MAP_FRAME = 'world'                           # the pipe map's / twin world's frame (world file origin)

@@ -10,6 +10,8 @@ import actionlib
 import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
+from geometry_msgs.msg import PoseStamped
+from visualization_msgs.msg import Marker, MarkerArray
 
 from ready import wait_robot_connected
 from pirate import names
@@ -51,6 +53,9 @@ class MissionTest(unittest.TestCase):
                 self.assertTrue(cond.wait_for(lambda: any(predicate(f) for f in seen), WAIT_S),
                                 'no such feedback; seen %s' % [(f.step, f.pab, f.waiting_for) for f in seen[-5:]])
 
+        poses, markers = [], []
+        rospy.Subscriber(names.MISSION_POSE_TOPIC, PoseStamped, poses.append)
+        rospy.Subscriber(names.MISSION_MARKERS_TOPIC, MarkerArray, markers.append)
         self.client.send_goal(MissionGoal(map='straight_90', points=['pit', 'target'], speed=50.0),
                               feedback_cb=feedback)
         wait_for(lambda f: f.pab == 'DRIVE' and f.state == 'running')
@@ -70,6 +75,20 @@ class MissionTest(unittest.TestCase):
         self.assertEqual(len(drives), 2, result.log)  # the drive, and what was left of it
         self.assertTrue(any(line.startswith('step') and 'HOME' in line for line in result.log))
         self.assertFalse(self.command('pause').ok)   # no mission runs any more
+        # RViz: the route from pit (0.4 m) to target (0.9 m) along the straight's
+        # axis (+x), the points named, and the estimate on the map between them
+        route = [m for a in markers for m in a.markers if m.ns == 'route']
+        self.assertTrue(route and route[0].type == Marker.LINE_STRIP)
+        xs = [p.x for p in route[0].points]
+        self.assertAlmostEqual(min(xs), 0.4, places=3)
+        self.assertAlmostEqual(max(xs), 0.9, places=3)
+        self.assertEqual(sorted(m.text for a in markers for m in a.markers if m.ns == 'points'), ['pit', 'target'])
+        self.assertTrue(poses)
+        for pose in poses:
+            self.assertEqual(pose.header.frame_id, names.MAP_FRAME)
+            self.assertTrue(0.38 <= pose.pose.position.x <= 0.92, pose.pose.position)
+            self.assertAlmostEqual(pose.pose.position.y, 0.0, places=6)
+        self.assertGreater(max(p.pose.position.x for p in poses), 0.8)   # it saw the robot near the target
 
 
 if __name__ == '__main__':

@@ -24,8 +24,9 @@ import actionlib
 import rospy
 import yaml
 from actionlib_msgs.msg import GoalStatus
-from geometry_msgs.msg import PoseStamped
+from geometry_msgs.msg import Point, PoseStamped
 from std_msgs.msg import Float64
+from visualization_msgs.msg import Marker, MarkerArray
 
 from pirate import names
 from pirate.msg import MissionAction, MissionFeedback, MissionResult, PirateAction, PirateGoal, RobotState
@@ -35,7 +36,7 @@ from pirate.supervisory import planner
 from pirate.supervisory.localiser import Localiser
 from pirate.supervisory.plan_cli import load_settings
 from pirate.world import network
-from pirate.world.pose import pose_along
+from pirate.world.pose import path_points, pose_along
 
 STATUS = {GoalStatus.SUCCEEDED: 'succeeded', GoalStatus.ABORTED: 'aborted', GoalStatus.PREEMPTED: 'preempted',
           GoalStatus.REJECTED: 'rejected', GoalStatus.RECALLED: 'rejected'}
@@ -43,6 +44,8 @@ PAB_CODES = {'CLAMP_STRAIGHT': PirateGoal.CLAMP_STRAIGHT, 'CLAMP_SIDEWAYS': Pira
              'T_JOINT': PirateGoal.T_JOINT, 'MITRE_BEND': PirateGoal.MITRE_BEND, 'DRIVE': PirateGoal.DRIVE,
              'HOME': PirateGoal.HOME}
 POSE_PERIOD_S = 0.2
+ROUTE_RGBA = (0.1, 0.8, 0.2, 0.9)        # the planned route, green
+LINE_WIDTH_M = 0.008
 
 
 class ActionRobot(object):
@@ -112,6 +115,7 @@ class MissionExecutiveNode(object):
         self._running = None            # (goal handle, executive, map)
         self._pose_pub = rospy.Publisher(names.MISSION_POSE_TOPIC, PoseStamped, queue_size=1)
         self._along_pub = rospy.Publisher(names.MISSION_ALONG_TOPIC, Float64, queue_size=1)
+        self._markers_pub = rospy.Publisher(names.MISSION_MARKERS_TOPIC, MarkerArray, queue_size=2, latch=True)
         self._server = actionlib.ActionServer(names.MISSION_ACTION, MissionAction, self._on_goal,
                                               self._on_cancel, auto_start=False)
         rospy.Service(names.MISSION_COMMAND_SERVICE, MissionCommand, self._on_command)
@@ -136,6 +140,7 @@ class MissionExecutiveNode(object):
                 return
             self._running = (handle, run, pipe_map)
         handle.set_accepted('planned: %d PABs' % len(route_plan.steps))
+        self._markers_pub.publish(route_markers(pipe_map, goal.points))
         threading.Thread(target=self._run, args=(handle, run), name='mission', daemon=True).start()
 
     def _prepare(self, goal):
@@ -203,6 +208,33 @@ class MissionExecutiveNode(object):
          pose.pose.orientation.w) = quaternion
         self._pose_pub.publish(pose)
         self._along_pub.publish(Float64(data=along_m * 1000.0))
+
+
+def _marker(kind, ns, index, rgba, scale, position=(0.0, 0.0, 0.0)):
+    marker = Marker(type=kind, action=Marker.ADD, ns=ns, id=index)
+    marker.header.frame_id = names.MAP_FRAME
+    marker.pose.position.x, marker.pose.position.y, marker.pose.position.z = position
+    marker.pose.orientation.w = 1.0
+    marker.scale.x, marker.scale.y, marker.scale.z = scale
+    marker.color.r, marker.color.g, marker.color.b, marker.color.a = rgba
+    return marker
+
+
+def route_markers(pipe_map, points):
+    """The planned route as one line per leg along the pipe's axis, and the
+    map's points with their names (RViz, frame ``world``)."""
+    out = MarkerArray()
+    for index, (a, b) in enumerate(zip(points, points[1:])):
+        line = _marker(Marker.LINE_STRIP, 'route', index, ROUTE_RGBA, (LINE_WIDTH_M, 0.0, 0.0))
+        line.points = [Point(*xyz) for xyz in path_points(pipe_map, pipe_map.points[a], pipe_map.points[b])]
+        out.markers.append(line)
+    for index, (name, along_m) in enumerate(sorted(pipe_map.points.items())):
+        position = pose_along(pipe_map, along_m)[0]
+        label = _marker(Marker.TEXT_VIEW_FACING, 'points', index, (1.0, 1.0, 1.0, 1.0), (0.0, 0.0, 0.04),
+                        (position[0], position[1], position[2] + 0.08))
+        label.text = name
+        out.markers.append(label)
+    return out
 
 
 def main():

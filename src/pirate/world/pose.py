@@ -27,3 +27,10 @@ def pose_along(network, along_m):
     """(position xyz in m, quaternion xyzw) of the path's axis at ``along_m``."""
     _, frame = network.locate(along_m)
     return frame.origin, quaternion_of_axes(frame.axes)
+
+
+def path_points(network, from_m, to_m, step_m=0.02):
+    """Points (xyz, m) on the path's axis from ``from_m`` to ``to_m`` (either
+    way), every ``step_m`` and at both ends: a route drawn as a line."""
+    count = max(1, int(abs(to_m - from_m) / step_m))
+    return [network.locate(from_m + (to_m - from_m) * i / count)[1].origin for i in range(count + 1)]
