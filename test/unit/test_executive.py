@@ -33,7 +33,12 @@ class FakeRobot(object):
         self.fail = dict(fail or {})          # pab -> list of statuses to return first
         self.goals = []
         self.hold_step = hold_step            # a pab that blocks until cancelled (once)
+        self.clamped_after_cancel = False     # the server's word after that cancel
         self.entered, self._cancel = threading.Event(), threading.Event()
+        self.is_clamped = True              # what the server says now (clamped())
+
+    def clamped(self):
+        return self.is_clamped
 
     def odometry(self):
         return (self.true_m - self.start_m) * 1000.0
@@ -44,14 +49,15 @@ class FakeRobot(object):
     def run(self, step):
         self.goals.append((step.pab, step.option, round(step.distance_mm)))
         if self.fail.get(step.pab):
-            return ex.Report(self.fail[step.pab].pop(0), 'scripted', self.odometry(), None, False, False)
+            return ex.Report(self.fail[step.pab].pop(0), 'scripted', self.odometry(), None, False)
         if step.pab == self.hold_step:
             self.hold_step = None
             self.entered.set()
             assert self._cancel.wait(WAIT_S)
             self._cancel.clear()
             self.true_m += step.distance_mm / 2000.0
-            return ex.Report('preempted', 'cancelled', self.odometry(), None, False, False)
+            self.is_clamped = self.clamped_after_cancel
+            return ex.Report('preempted', 'cancelled', self.odometry(), None, False)
         if step.pab == 'DRIVE':
             self.true_m += step.distance_mm / 1000.0
         found = None
@@ -61,11 +67,12 @@ class FakeRobot(object):
                     else step.junction.exit_m + SETTINGS['robot']['rear_mm'] / 1000.0) + self.shift_m
             if abs(edge - self.true_m) * 1000 > abs(step.distance_mm):
                 return ex.Report('aborted', 'no junction within %.0f mm' % abs(step.distance_mm),
-                                 self.odometry() + step.distance_mm, None, True, True)
+                                 self.odometry() + step.distance_mm, None, True)
             self.true_m = edge
             found = self.odometry()
             self.true_m = step.end_m + self.shift_m
-        return ex.Report('succeeded', 'done', self.odometry(), found, False, step.pab != 'HOME')
+        self.is_clamped = step.pab != 'HOME'
+        return ex.Report('succeeded', 'done', self.odometry(), found, False)
 
 
 def mission(robot, route=('pit', 'target'), **kw):
@@ -152,8 +159,11 @@ class Waiter(object):
             self.seen.clear()
 
 
-def test_pause_holds_and_resume_reclamps_then_drives_only_what_is_left():
+@pytest.mark.parametrize('clamped_after, reclamped', [(False, True), (True, False)])
+def test_pause_holds_and_resume_reclamps_only_if_unclamped_then_drives_only_what_is_left(clamped_after,
+                                                                                          reclamped):
     robot, waiter = FakeRobot(0.3, hold_step='DRIVE'), Waiter()
+    robot.clamped_after_cancel = clamped_after
     run = mission(robot, progress=waiter)
     thread, result = _in_thread(run)
     assert robot.entered.wait(WAIT_S)
@@ -163,8 +173,9 @@ def test_pause_holds_and_resume_reclamps_then_drives_only_what_is_left():
     thread.join(WAIT_S)
     assert result['outcome'].status == 'succeeded', result['outcome'].message
     kinds = [g[0] for g in robot.goals]
-    assert kinds == ['CLAMP_SIDEWAYS', 'DRIVE', 'CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND', 'DRIVE', 'HOME']
-    first, rest = robot.goals[1][2], robot.goals[3][2]
+    again = ['CLAMP_SIDEWAYS'] if reclamped else []
+    assert kinds == ['CLAMP_SIDEWAYS', 'DRIVE'] + again + ['DRIVE', 'MITRE_BEND', 'DRIVE', 'HOME']
+    first, rest = robot.goals[1][2], robot.goals[2 + len(again)][2]
     assert first + 0 == pytest.approx(2 * rest, abs=2)   # half was driven before the pause
 
 

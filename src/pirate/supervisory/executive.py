@@ -20,8 +20,10 @@ What a gas-network inspector expects of it (issue 11):
   left of it. Cancel always ends the mission.
 
 Pure: the robot is an object with ``run(step) -> Report`` (blocking until
-the goal ends) and ``cancel()`` (any thread); the ROS edge provides one over
-actionlib. Operator calls (:meth:`pause`, :meth:`resume`, :meth:`cancel`,
+the goal ends), ``cancel()`` (any thread) and ``clamped()`` (the server's
+sensed state now: asked at resume time, not taken from the report of the
+cancelled goal, since the robot may have settled since); the ROS edge
+provides one over actionlib. Operator calls (:meth:`pause`, :meth:`resume`, :meth:`cancel`,
 :meth:`confirm`, :meth:`set_level`) come from any thread.
 """
 import collections
@@ -34,9 +36,8 @@ LEVELS = (FULL, CONFIRM, MANUAL)
 
 #: What one goal came to: status succeeded / aborted / preempted / rejected;
 #: odometry (mm) at its end; where a junction PAB found its junction (mm of
-#: odometry) or None; ``junction_missing`` when it searched and found none;
-#: ``clamped``: the robot's sensed clamp state afterwards.
-Report = collections.namedtuple('Report', 'status message odometry_mm junction_odometry_mm junction_missing clamped')
+#: odometry) or None; ``junction_missing`` when it searched and found none.
+Report = collections.namedtuple('Report', 'status message odometry_mm junction_odometry_mm junction_missing')
 #: Progress for the operator.
 Progress = collections.namedtuple('Progress', 'step steps pab along_m time_left_s level state waiting_for')
 #: How the mission ended: succeeded / aborted / cancelled / mismatch / manual.
@@ -142,10 +143,10 @@ class Executive(object):
 
     def _run_step(self, step):
         retries_left = self._retries(step)
-        resume_with_clamp = False
+        resuming = False
         while True:
             self._await_go(step)
-            if resume_with_clamp:
+            if resuming and step.holds is not None and not self.robot.clamped():
                 self._reclamp(step, 'resume')
             todo = self._remaining(step)
             if todo is None:
@@ -155,12 +156,12 @@ class Executive(object):
             report = self._goal(todo)
             if report.status == 'succeeded':
                 return self._arrived(step, report)
-            resume_with_clamp = False
+            resuming = False
             if self._cancelled:
                 raise Stop('cancelled', 'cancelled by the operator during step %d (%s)'
                            % (self.step_index + 1, step.pab))
             if report.status == 'preempted' and self._paused:
-                resume_with_clamp = not report.clamped and step.holds is not None
+                resuming = True
                 continue
             if report.status == 'preempted':
                 raise Stop('cancelled', 'step %d (%s) was cancelled outside the mission: %s'

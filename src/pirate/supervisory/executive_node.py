@@ -30,7 +30,8 @@ from visualization_msgs.msg import Marker, MarkerArray
 
 from pirate import names
 from pirate.msg import MissionAction, MissionFeedback, MissionResult, PirateAction, PirateGoal, RobotState
-from pirate.srv import MissionCommand, MissionCommandResponse
+from pirate.sequencer.clamp_state import IDLE_CLAMPED
+from pirate.srv import MissionCommand, MissionCommandResponse, ServerStatus
 from pirate.supervisory import executive as ex
 from pirate.supervisory import planner
 from pirate.supervisory.localiser import Localiser
@@ -57,6 +58,7 @@ class ActionRobot(object):
         self._cond = threading.Condition()
         self._handle = None
         self.odometry_mm = None
+        self._status = rospy.ServiceProxy(names.SERVER_STATUS_SERVICE, ServerStatus)
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state, queue_size=5)
 
     def _on_state(self, msg):
@@ -68,7 +70,7 @@ class ActionRobot(object):
         option = getattr(PirateGoal, step.option, None) if step.option else PirateGoal.NONE
         if option is None:
             return ex.Report('rejected', 'option %s is not one of Pirate.action' % step.option,
-                             self.odometry_mm, None, False, False)
+                             self.odometry_mm, None, False)
         goal = PirateGoal(name=PAB_CODES[step.pab], pipe_diameter=step.pipe_diameter,
                           distance=step.distance_mm, speed=step.speed_mm_s, option=option)
         with self._cond:
@@ -78,7 +80,7 @@ class ActionRobot(object):
         if not ended:
             handle.cancel()
             return ex.Report('aborted', 'no result within %.0f s; goal cancelled' % self._timeout,
-                             self.odometry_mm, None, False, False)
+                             self.odometry_mm, None, False)
         return self._report(handle)
 
     def _done(self):
@@ -92,10 +94,17 @@ class ActionRobot(object):
         result = handle.get_result()
         status = STATUS.get(handle.get_goal_status(), 'aborted')
         if result is None:
-            return ex.Report(status, 'no result', self.odometry_mm, None, False, False)
+            return ex.Report(status, 'no result', self.odometry_mm, None, False)
         found = getattr(result, 'junction_odometry', float('nan'))
         return ex.Report(status, result.message, self.odometry_mm, None if math.isnan(found) else found,
-                         bool(getattr(result, 'junction_missing', False)), result.server_state == 'Idle Clamped')
+                         bool(getattr(result, 'junction_missing', False)))
+
+    def clamped(self):
+        """The Pirate Server's sensed state now: Idle Clamped or not."""
+        try:
+            return self._status().server_state == IDLE_CLAMPED
+        except rospy.ServiceException:
+            return False        # unknown: re-clamping is the safe side
 
     def cancel(self):
         """Cancel the running goal (any thread)."""
