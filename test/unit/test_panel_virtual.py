@@ -147,3 +147,18 @@ def test_feedback_line_shows_the_numbers_and_idle_state():
     idle = virtual_node.feedback_text(msg.PirateFeedback(server_state='Idle Partly Clamped (front full, '
                                                                       'rear free)'))
     assert idle.startswith('Server: Idle Partly Clamped') and 'running' not in idle
+
+
+def test_mission_line_shows_the_step_the_level_and_what_it_waits_for(panel):
+    virtual_node = pytest.importorskip('pirate.panel.virtual_node')
+    msg = pytest.importorskip('pirate.msg')
+    fb = msg.MissionFeedback(step=3, steps=9, pab='MITRE_BEND', along_mm=1885.4, time_left_s=212.0,
+                             level='confirm', state='waiting', waiting_for='confirmation of step 3 (MITRE_BEND)')
+    line = virtual_node.mission_text(fb)
+    assert line == ('step 3/9 MITRE_BEND at 1885 mm, level confirm, about 212 s left, '
+                    'WAITING for confirmation of step 3 (MITRE_BEND)')
+    assert 'WAITING' not in virtual_node.mission_text(msg.MissionFeedback(step=1, steps=2, pab='DRIVE'))
+    panel.mission_text = line
+    assert panel.status_lines()[3] == 'Mission: ' + line
+    panel.mission_text = ''
+    assert panel.status_lines()[3] == ''

@@ -40,8 +40,8 @@ STRIP_KEYS = {pygame.K_s: S_BASE, pygame.K_m: M_BASE, pygame.K_r: R_BASE}
 #: Channel of the operation-mode button: its LED on means PAB mode (SPEC 5).
 OPERATION_MODE_BUTTON, PLAY_BUTTON = 43, 41
 
-WIDTH, HEIGHT = 940, 340
-STATUS_H = 64
+WIDTH, HEIGHT = 940, 358
+STATUS_H = 82     # four status lines: mode, PAB, the panel's word, the mission
 BODY, PANEL_EDGE, TEXT = (38, 38, 42), (90, 90, 96), (225, 225, 225)
 BUTTON_OFF, BUTTON_LIT, SLOT, THUMB = (70, 70, 76), (235, 40, 40), (15, 15, 15), (200, 200, 205)
 KNOB, KNOB_MARK = (120, 120, 128), (250, 250, 250)
@@ -81,6 +81,7 @@ class VirtualPanel(object):
         self.selected = 0
         self.pab_text = 'PAB server: no news yet'
         self.operator_text = ''     # the Mapper's last message (refusals, results)
+        self.mission_text = ''      # the mission executive's step, level and what it waits for
         self._dragging = None
         self._held = None
         self._font = None
@@ -176,7 +177,8 @@ class VirtualPanel(object):
         run = 'playing' if self.leds.get(PLAY_BUTTON) else 'stopped'
         return ['Operation mode: %s   (%s)   strip %d selected'
                 % (self.operation_mode, run, self.selected + 1), self.pab_text,
-                'Panel: %s' % self.operator_text if self.operator_text else '']
+                'Panel: %s' % self.operator_text if self.operator_text else '',
+                'Mission: %s' % self.mission_text if self.mission_text else '']
 
     def draw(self, surface):
         """Draw the whole panel on ``surface`` (WIDTH x HEIGHT)."""

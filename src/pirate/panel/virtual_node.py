@@ -6,7 +6,9 @@ MidiOutput on ``names.MIDI_OUTPUT_TOPIC``, and shows the PAB state from the
 Pirate Server's action feedback and result (``/pirate/feedback``,
 ``/pirate/result``; when no server runs it simply shows no PAB news) and
 the panel's messages to the operator (refusals, results) from
-``names.OPERATOR_TOPIC``.
+``names.OPERATOR_TOPIC``, and the running mission (step k of n, autonomy
+level, what it waits for, how it ended) from the mission executive's
+action feedback and result.
 
 Private params: ``~fps`` (redraw rate, default 30), ``~screenshot`` (path:
 save the window there once after the first LED arrives or after 2 s, for
@@ -19,7 +21,8 @@ import pygame
 import rospy
 
 from pirate import names
-from pirate.msg import MidiInput, MidiOutput, PirateActionFeedback, PirateActionResult
+from pirate.msg import (MidiInput, MidiOutput, MissionActionFeedback, MissionActionResult,
+                        PirateActionFeedback, PirateActionResult)
 from std_msgs.msg import String
 from pirate.panel import virtual
 
@@ -40,6 +43,10 @@ class VirtualPanelNode(object):
         rospy.Subscriber(names.PIRATE_ACTION + '/result', PirateActionResult,
                          self._on_result, queue_size=10)
         rospy.Subscriber(names.OPERATOR_TOPIC, String, self._on_operator, queue_size=10)
+        rospy.Subscriber(names.MISSION_ACTION + '/feedback', MissionActionFeedback,
+                         self._on_mission, queue_size=10)
+        rospy.Subscriber(names.MISSION_ACTION + '/result', MissionActionResult,
+                         self._on_mission_result, queue_size=10)
         self._fps = float(rospy.get_param('~fps', 30.0))
         self._screenshot = rospy.get_param('~screenshot', '')
 
@@ -54,6 +61,14 @@ class VirtualPanelNode(object):
     def _on_operator(self, msg):
         with self._lock:
             self.panel.operator_text = msg.data
+
+    def _on_mission(self, msg):
+        with self._lock:
+            self.panel.mission_text = mission_text(msg.feedback)
+
+    def _on_mission_result(self, msg):
+        with self._lock:
+            self.panel.mission_text = '%s: %s' % (msg.result.status or 'ended', msg.result.message)
 
     def _on_result(self, msg):
         outcome = _TERMINAL.get(msg.status.status, 'ended')
@@ -99,6 +114,13 @@ def feedback_text(fb):
     timing = ' (%.1f of %.0f s)' % (fb.elapsed, fb.timeout) if fb.timeout else ''
     return 'PAB running: %s / %s / %s%s%s' % (fb.server_state, fb.pab_state, fb.primitive,
                                                numbers or ' ' + fb.guard, timing)
+
+
+def mission_text(fb):
+    """One status line from a mission feedback: where it is and what it waits for."""
+    waiting = ', WAITING for %s' % fb.waiting_for if fb.waiting_for else ''
+    return 'step %d/%d %s at %.0f mm, level %s, about %.0f s left%s' % (
+        fb.step, fb.steps, fb.pab, fb.along_mm, fb.level, fb.time_left_s, waiting)
 
 
 def main():
