@@ -30,6 +30,7 @@ from visualization_msgs.msg import Marker, MarkerArray
 
 from pirate import names
 from pirate.msg import MissionAction, MissionFeedback, MissionResult, PirateAction, PirateGoal, RobotState
+from pirate.sequencer import goals
 from pirate.sequencer.clamp_state import IDLE_CLAMPED
 from pirate.srv import MissionCommand, MissionCommandResponse, ServerStatus
 from pirate.supervisory import executive as ex
@@ -41,9 +42,6 @@ from pirate.world.pose import path_points, pose_along
 
 STATUS = {GoalStatus.SUCCEEDED: 'succeeded', GoalStatus.ABORTED: 'aborted', GoalStatus.PREEMPTED: 'preempted',
           GoalStatus.REJECTED: 'rejected', GoalStatus.RECALLED: 'rejected'}
-PAB_CODES = {'CLAMP_STRAIGHT': PirateGoal.CLAMP_STRAIGHT, 'CLAMP_SIDEWAYS': PirateGoal.CLAMP_SIDEWAYS,
-             'T_JOINT': PirateGoal.T_JOINT, 'MITRE_BEND': PirateGoal.MITRE_BEND, 'DRIVE': PirateGoal.DRIVE,
-             'HOME': PirateGoal.HOME}
 POSE_PERIOD_S = 0.2
 ROUTE_RGBA = (0.1, 0.8, 0.2, 0.9)        # the planned route, green
 LINE_WIDTH_M = 0.008
@@ -67,11 +65,11 @@ class ActionRobot(object):
 
     def run(self, step):
         """Send ``step`` as a goal and wait for its end: an :data:`ex.Report`."""
-        option = getattr(PirateGoal, step.option, None) if step.option else PirateGoal.NONE
+        option = goals.OPTIONS.get(step.option or 'NONE')
         if option is None:
             return ex.Report('rejected', 'option %s is not one of Pirate.action' % step.option,
                              self.odometry_mm, None, False)
-        goal = PirateGoal(name=PAB_CODES[step.pab], pipe_diameter=step.pipe_diameter,
+        goal = PirateGoal(name=goals.CODES[step.pab], pipe_diameter=step.pipe_diameter,
                           distance=step.distance_mm, speed=step.speed_mm_s, option=option)
         with self._cond:
             self._handle = self._client.send_goal(goal, transition_cb=self._transition)
