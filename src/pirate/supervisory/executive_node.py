@@ -71,9 +71,12 @@ class ActionRobot(object):
                              self.odometry_mm, None, False)
         goal = PirateGoal(name=goals.CODES[step.pab], pipe_diameter=step.pipe_diameter,
                           distance=step.distance_mm, speed=step.speed_mm_s, option=option)
+        deadline = rospy.get_time() + self._timeout     # robot time, as ~goal_timeout says
         with self._cond:
             self._handle = self._client.send_goal(goal, transition_cb=self._transition)
-            ended = self._cond.wait_for(self._done, self._timeout)
+            while not self._done() and rospy.get_time() < deadline:
+                self._cond.wait(0.1)    # woken by transitions; the deadline is robot time
+            ended = self._done()
             handle, self._handle = self._handle, None
         if not ended:
             handle.cancel()
