@@ -59,7 +59,7 @@ class WorldViz(object):
         poses = [((p.position.x, p.position.y, p.position.z),
                   (p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z)) for p in msg.poses]
         shapes = world_markers.robot_shapes(poses, DIRECTIONS, self.geometry)
-        self.robot_pub.publish(to_markers(shapes, 'robot', {'box': MODULE_RGBA, 'wheel': WHEEL_RGBA}))
+        self.robot_pub.publish(to_markers(shapes, 'robot', {'shell': MODULE_RGBA, 'wheel': WHEEL_RGBA}))
 
 
 def _identity(parent, child):
