@@ -8,7 +8,7 @@ from pirate import paths
 from pirate.viz import world_markers
 from pirate.world import network
 
-GEOMETRY = {'module_length_m': 0.09, 'body_half_width_m': 0.017, 'body_half_height_m': 0.015,
+GEOMETRY = {'module_length_m': 0.09, 'body_radius_m': 0.02,
             'wheel_diameter_m': 0.046, 'wheel_half_width_m': 0.006}
 
 
@@ -31,12 +31,14 @@ def test_every_piece_of_the_network_is_drawn():
     assert first[1] == pytest.approx((0.45, 0.0, 0.0)) and first[3] == pytest.approx((0.09, 0.09, 0.9))
 
 
-def test_robot_boxes_reach_from_their_joint_and_wheels_sit_on_it():
+def test_robot_shells_reach_from_their_joint_and_wheels_sit_on_it():
     upright = (1.0, 0.0, 0.0, 0.0)
     pitched = (math.cos(0.25), 0.0, math.sin(0.25), 0.0)       # 0.5 rad about y
     shapes = world_markers.robot_shapes([((0, 0, 0), upright), ((1, 0, 0), pitched)], (1, -2), GEOMETRY)
     kinds = [s[0] for s in shapes]
-    assert kinds == ['box', 'wheel', 'box']                     # a half module has no wheel
+    assert kinds == ['shell', 'wheel', 'shell']                     # a half module has no wheel
     assert shapes[0][1] == pytest.approx((0.045, 0, 0)) and shapes[1][1] == (0, 0, 0)
+    assert shapes[0][3] == pytest.approx((0.04, 0.04, 0.09))        # round, as long as the module
+    assert world_markers._rotate((shapes[0][2][3],) + tuple(shapes[0][2][:3]), (0, 0, 1)) == pytest.approx((1, 0, 0))
     centre = shapes[2][1]                                       # 22.5 mm back along the pitched x
     assert centre == pytest.approx((1 - 0.0225 * math.cos(0.5), 0, 0.0225 * math.sin(0.5)))

@@ -77,7 +77,8 @@ def model_xml(world, config, roll):
     root = ET.Element('mujoco', model='pirate_' + str(world.name))
     ET.SubElement(root, 'compiler', angle='radian')
     ET.SubElement(root, 'option', timestep='%g' % config['physics']['timestep_s'], gravity='0 0 -9.81',
-                  integrator='implicitfast', cone='elliptic')
+                  integrator='implicitfast', cone='elliptic',
+                  impratio='%g' % config['physics']['friction_impratio'])
     ET.SubElement(root, 'visual').append(ET.Element('global', offwidth='640', offheight='480'))
     _defaults(root, config)
     body = ET.SubElement(root, 'worldbody')

@@ -50,10 +50,10 @@ def _fmt(values):
     return ' '.join('%.6g' % v for v in values)
 
 
-def _box_inertia(mass, half):
-    """Diagonal inertia of a uniform box (the mass estimate's shape)."""
-    a, b, c = (2 * h for h in half)
-    return (mass * (b * b + c * c) / 12, mass * (a * a + c * c) / 12, mass * (a * a + b * b) / 12)
+def _cylinder_inertia(mass, radius, length):
+    """Diagonal inertia of a uniform cylinder along x (a module's shell)."""
+    across = mass * (3 * radius * radius + length * length) / 12
+    return (mass * radius * radius / 2, across, across)
 
 
 def wheel_joint(board):
@@ -75,14 +75,14 @@ class RobotBuilder(object):
         self.cfg = config
 
     def _module(self, body, name, mass, direction, length):
-        """A module's inertial and collision box, reaching ``length`` from
+        """A module's inertial and round collision shell about its axis, reaching ``length`` from
         the body origin in ``direction`` (+1 front, -1 rear)."""
-        half = (length / 2, self.geo['body_half_width_m'], self.geo['body_half_height_m'])
+        radius = self.geo['body_radius_m']
         centre = (direction * length / 2, 0, 0)
         ET.SubElement(body, 'inertial', pos=_fmt(centre), mass='%g' % mass,
-                      diaginertia=_fmt(_box_inertia(mass, half)))
-        ET.SubElement(body, 'geom', type='box', pos=_fmt(centre), size=_fmt(half),
-                      name=name + '_shell', **{'class': ROBOT_CLASS})
+                      diaginertia=_fmt(_cylinder_inertia(mass, radius, length)))
+        ET.SubElement(body, 'geom', type='cylinder', pos=_fmt(centre), size=_fmt((radius, length / 2)),
+                      euler='0 1.5708 0', name=name + '_shell', **{'class': ROBOT_CLASS})
 
     def _wheel(self, body, board, x):
         radius = self.geo['wheel_diameter_m'] / 2

@@ -9,7 +9,7 @@ node (pirate.viz.world_node) turns them into markers. No ROS import.
 """
 import math
 
-#: Shape = (kind 'cylinder'|'box', centre xyz, quaternion xyzw, scale xyz).
+#: Shape = (kind 'cylinder'|'shell'|'wheel', centre xyz, quaternion xyzw, scale xyz).
 CAP_THICKNESS_M = 0.004
 
 
@@ -62,7 +62,7 @@ def _rotate(q_wxyz, v):
 
 
 def robot_shapes(poses, directions, geometry):
-    """Module boxes and wheel discs at the true poses.
+    """Module shells (round, about the module's axis) and wheel discs at the true poses.
 
     ``poses``: [(xyz, wxyz)] per module (body origin = its joint);
     ``directions``: +-1 a module reaching forward (+) or back (-) from its
@@ -71,14 +71,14 @@ def robot_shapes(poses, directions, geometry):
     geometry section.
     """
     length = geometry['module_length_m']
-    half = (geometry['body_half_width_m'], geometry['body_half_height_m'])
+    diameter = 2 * geometry['body_radius_m']
     wheel_d = geometry['wheel_diameter_m']
     shapes = []
     for (pos, quat), direction in zip(poses, directions):
         extent = length / 2 if abs(direction) == 2 else length
         centre = _add(pos, _rotate(quat, (direction / abs(direction) * extent / 2, 0.0, 0.0)))
-        xyzw = (quat[1], quat[2], quat[3], quat[0])
-        shapes.append(('box', centre, xyzw, (extent, 2 * half[0], 2 * half[1])))
+        along = _rotate(quat, (1.0, 0.0, 0.0))
+        shapes.append(('shell', centre, z_to(along), (diameter, diameter, extent)))
         if abs(direction) == 1:                  # a wheel on this module's joint
             axle = _rotate(quat, (0.0, 1.0, 0.0))
             shapes.append(('wheel', pos, z_to(axle), (wheel_d, wheel_d, 2 * geometry['wheel_half_width_m'])))

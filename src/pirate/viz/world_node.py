@@ -25,7 +25,7 @@ MODULE_RGBA = (0.85, 0.45, 0.1, 1.0)        # the URDF's pirate orange
 WHEEL_RGBA = (0.1, 0.1, 0.1, 1.0)
 #: TRUTH_BODIES order (front to rear) -> world_markers.robot_shapes directions.
 DIRECTIONS = (1, 1, 1, 2, -2, -1, -1, -1)
-TYPES = {'cylinder': Marker.CYLINDER, 'wheel': Marker.CYLINDER, 'box': Marker.CUBE}
+TYPES = {'cylinder': Marker.CYLINDER, 'wheel': Marker.CYLINDER, 'shell': Marker.CYLINDER}
 
 
 def to_markers(shapes, ns, colours):
@@ -59,7 +59,7 @@ class WorldViz(object):
         poses = [((p.position.x, p.position.y, p.position.z),
                   (p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z)) for p in msg.poses]
         shapes = world_markers.robot_shapes(poses, DIRECTIONS, self.geometry)
-        self.robot_pub.publish(to_markers(shapes, 'robot', {'box': MODULE_RGBA, 'wheel': WHEEL_RGBA}))
+        self.robot_pub.publish(to_markers(shapes, 'robot', {'shell': MODULE_RGBA, 'wheel': WHEEL_RGBA}))
 
 
 def _identity(parent, child):
