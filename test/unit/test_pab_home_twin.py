@@ -75,7 +75,7 @@ def test_home_from_any_pose(start):
         rolled = h.ground_truth()['roll']
         robot_wait(h, 1.0)
         view, guards = h.feed.latest(), h.server.book.for_diameter(90)
-        assert clamp_state.sensed(guards, view) == (clamp_state.FREE, clamp_state.FREE)
+        assert clamp_state.sensed(guards, view) == (clamp_state.FREE, clamp_state.FREE), (view.angles, view.efforts)
         assert abs(h.ground_truth()['roll'] - rolled) < SETTLED_RAD
         home = h.model.body_pose(ROTATIONAL_FRONT)[0]
         assert abs(math.hypot(*home[1:]) - math.hypot(*rest[1:])) < ON_WALL_M, (rest, home)   # on the wall

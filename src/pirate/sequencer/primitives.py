@@ -126,11 +126,27 @@ class MotionPrimitives(object):
                 self.setpoint.set(bend.joint, bend.setpoint)
 
     def unclamp(self, part, partial=False):
-        """Open ``part``'s V fully (Home) or partially (re-adjust), 4.7.2.5."""
+        """Open ``part``'s V fully (Home) or partially (re-adjust), 4.7.2.5.
+
+        A partial unclamp leaves "a very open V" (4.7.2.5): at its guard the
+        bends are held by their worms (PWM 0). With the unclamp torque left
+        on they drove on past straight into a reverse V pressing the wall,
+        and the rotation that follows then dragged the clamped part round
+        (twin, notes/issue-9.md). The next clamp puts them back in torque.
+        """
         pair = self.guards.pair('unclamp_partial' if partial else 'unclamp', part)
         self._bends_in_torque(pair)
         self.wait_for('unclamp %s%s' % (part, ' partial' if partial else ''),
                       lambda v: pair.opened(v.angles), pair.describe(False))
+        if partial:
+            self._hold(pair)
+
+    def _hold(self, pair):
+        """Both bends of ``pair`` held by their worms (PWM 0) where they are."""
+        with self.writing():
+            for bend in (pair.outer, pair.inner):
+                self.control.set_mode(bend.joint, 'pwm')
+                self.setpoint.set(bend.joint, 0)
 
     def rotate(self, target_rad, name='rotate'):
         """Rotational module to ``target_rad`` from aligned (4.7.2.2).
