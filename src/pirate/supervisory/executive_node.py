@@ -10,7 +10,9 @@ what it waits for) and cancel a mission. One mission at a time.
 
 The operator's word during a mission: the ``/pirate/mission/command``
 service (pirate/MissionCommand: pause, resume, confirm, cancel,
-level full|confirm|manual), which the panel calls. The estimated position
+level full|confirm|manual), which the panel's mission buttons call; between
+missions ``level X`` sets the level of the next mission whose goal names
+none (the panel's level buttons work before a mission). The estimated position
 is published as a pose on the map (``/pirate/mission/pose``, frame ``map``)
 and as millimetres along the path (``/pirate/mission/along_mm``), 5 Hz.
 
@@ -123,6 +125,7 @@ class MissionExecutiveNode(object):
         self.robot = ActionRobot(float(rospy.get_param('~goal_timeout', 600.0)))
         self._lock = threading.Lock()
         self._running = None            # (goal handle, executive, map)
+        self._next_level = ex.FULL      # for a goal that names no level; the panel sets it between missions
         self._pose_pub = rospy.Publisher(names.MISSION_POSE_TOPIC, PoseStamped, queue_size=1)
         self._along_pub = rospy.Publisher(names.MISSION_ALONG_TOPIC, Float64, queue_size=1)
         self._markers_pub = rospy.Publisher(names.MISSION_MARKERS_TOPIC, MarkerArray, queue_size=2, latch=True)
@@ -139,7 +142,7 @@ class MissionExecutiveNode(object):
         try:
             pipe_map, route_plan, policy = self._prepare(goal)
             run = ex.Executive(route_plan, self.robot, Localiser(pipe_map.points[goal.points[0]], self.settings),
-                               self.settings, policy=policy, level=goal.level or ex.FULL,
+                               self.settings, policy=policy, level=goal.level or self._next_level,
                                progress=lambda p: self._feedback(handle, p), out=rospy.loginfo)
         except (network.WorldError, planner.PlanError, ValueError, yaml.YAMLError) as refused:
             self._refuse(handle, str(refused))
@@ -190,7 +193,8 @@ class MissionExecutiveNode(object):
     def _feedback(self, handle, progress):
         if handle is not None and not rospy.is_shutdown():
             handle.publish_feedback(MissionFeedback(
-                step=progress.step, steps=progress.steps, pab=progress.pab, along_mm=progress.along_m * 1000,
+                step=progress.step, steps=progress.steps, pab=progress.pab, option=progress.option,
+                distance_mm=progress.distance_mm, along_mm=progress.along_m * 1000,
                 time_left_s=progress.time_left_s, level=progress.level, state=progress.state,
                 waiting_for=progress.waiting_for))
 
@@ -199,9 +203,19 @@ class MissionExecutiveNode(object):
         with self._lock:
             running = self._running
         if running is None:
-            return MissionCommandResponse(ok=False, message='no mission is running')
-        ok, message = running[1].command(req.command)
+            ok, message = self._between_missions(req.command)
+        else:
+            ok, message = running[1].command(req.command)
         return MissionCommandResponse(ok=ok, message=message)
+
+    def _between_missions(self, text):
+        """No mission runs: only ``level X`` means something (the level of
+        the next mission whose goal names none)."""
+        words = text.strip().lower().split()
+        if len(words) == 2 and words[0] == 'level' and words[1] in ex.LEVELS:
+            self._next_level = words[1]
+            return True, 'autonomy level %s for the next mission' % words[1]
+        return False, 'no mission is running'
 
     # --- where the robot is -------------------------------------------------
     def _publish_pose(self, _event):
