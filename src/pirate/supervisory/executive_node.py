@@ -37,26 +37,24 @@ from pirate.sequencer.clamp_state import IDLE_CLAMPED
 from pirate.srv import MissionCommand, MissionCommandResponse, ServerStatus
 from pirate.supervisory import executive as ex
 from pirate.supervisory import planner
+from pirate.supervisory.goal_client import GoalClient
 from pirate.supervisory.localiser import Localiser
 from pirate.supervisory.plan_cli import load_settings
 from pirate.world import network
 from pirate.world.pose import path_points, pose_along
 
-STATUS = {GoalStatus.SUCCEEDED: 'succeeded', GoalStatus.ABORTED: 'aborted', GoalStatus.PREEMPTED: 'preempted',
-          GoalStatus.REJECTED: 'rejected', GoalStatus.RECALLED: 'rejected'}
 POSE_PERIOD_S = 0.2
 ROUTE_RGBA = (0.1, 0.8, 0.2, 0.9)        # the planned route, green
 LINE_WIDTH_M = 0.008
 
 
 class ActionRobot(object):
-    """The executive's robot: one Pirate Server goal at a time over actionlib."""
+    """The executive's robot: one Pirate Server goal at a time
+    (pirate.supervisory.goal_client), its end as an :data:`ex.Report`."""
 
     def __init__(self, timeout_s):
-        self._client = actionlib.ActionClient(names.PIRATE_ACTION, PirateAction)
-        self._timeout = timeout_s
-        self._cond = threading.Condition()
-        self._handle = None
+        self.goals = GoalClient(actionlib.ActionClient(names.PIRATE_ACTION, PirateAction), timeout_s,
+                                rospy.get_time, rospy.is_shutdown)
         self.odometry_mm = None
         self._status = rospy.ServiceProxy(names.SERVER_STATUS_SERVICE, ServerStatus)
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state, queue_size=5)
@@ -73,34 +71,7 @@ class ActionRobot(object):
                              self.odometry_mm, None, False)
         goal = PirateGoal(name=goals.CODES[step.pab], pipe_diameter=step.pipe_diameter,
                           distance=step.distance_mm, speed=step.speed_mm_s, option=option)
-        deadline = rospy.get_time() + self._timeout     # robot time, as ~goal_timeout says
-        with self._cond:
-            self._handle = self._client.send_goal(goal, transition_cb=self._transition)
-            while not self._done() and rospy.get_time() < deadline:
-                self._cond.wait(0.1)    # woken by transitions; the deadline is robot time
-            ended = self._done()
-            handle, self._handle = self._handle, None
-        if not ended:
-            handle.cancel()
-            return ex.Report('aborted', 'no result within %.0f s; goal cancelled' % self._timeout,
-                             self.odometry_mm, None, False)
-        return self._report(handle)
-
-    def _done(self):
-        return rospy.is_shutdown() or self._handle.get_comm_state() == actionlib.CommState.DONE
-
-    def _transition(self, _handle):
-        with self._cond:
-            self._cond.notify_all()
-
-    def _report(self, handle):
-        result = handle.get_result()
-        status = STATUS.get(handle.get_goal_status(), 'aborted')
-        if result is None:
-            return ex.Report(status, 'no result', self.odometry_mm, None, False)
-        found = getattr(result, 'junction_odometry', float('nan'))
-        return ex.Report(status, result.message, self.odometry_mm, None if math.isnan(found) else found,
-                         bool(getattr(result, 'junction_missing', False)))
+        return report(self.goals.run(goal), self.odometry_mm)
 
     def clamped(self):
         """The Pirate Server's sensed state now: Idle Clamped or not."""
@@ -111,10 +82,18 @@ class ActionRobot(object):
 
     def cancel(self):
         """Cancel the running goal (any thread)."""
-        with self._cond:
-            handle = self._handle
-        if handle is not None:
-            handle.cancel()
+        self.goals.cancel()
+
+
+def report(ending, odometry_mm):
+    """The executive's :data:`ex.Report` of a goal's :data:`Ending`: a goal
+    that ran out of time counts as aborted (the policy may retry it), one
+    recalled before it started as rejected (a retry cannot help)."""
+    status = {'timeout': 'aborted', 'interrupted': 'aborted', 'recalled': 'rejected'}.get(ending.status,
+                                                                                          ending.status)
+    found = getattr(ending.result, 'junction_odometry', float('nan'))
+    return ex.Report(status, ending.message, odometry_mm, None if math.isnan(found) else found,
+                     bool(getattr(ending.result, 'junction_missing', False)))
 
 
 class MissionExecutiveNode(object):
