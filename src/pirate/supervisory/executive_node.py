@@ -118,10 +118,11 @@ class MissionExecutiveNode(object):
     # --- goals --------------------------------------------------------------
     def _on_goal(self, handle):
         goal = handle.get_goal()
+        level = goal.level or self._next_level
         try:
-            pipe_map, route_plan, policy = self._prepare(goal)
+            pipe_map, route_plan, policy = self._prepare(goal, level)
             run = ex.Executive(route_plan, self.robot, Localiser(pipe_map.points[goal.points[0]], self.settings),
-                               self.settings, policy=policy, level=goal.level or self._next_level,
+                               self.settings, policy=policy, level=level,
                                progress=lambda p: self._feedback(handle, p), out=rospy.loginfo)
         except (network.WorldError, planner.PlanError, ValueError, yaml.YAMLError) as refused:
             self._refuse(handle, str(refused))
@@ -135,11 +136,13 @@ class MissionExecutiveNode(object):
         self._markers_pub.publish(route_markers(pipe_map, goal.points))
         threading.Thread(target=self._run, args=(handle, run), name='mission', daemon=True).start()
 
-    def _prepare(self, goal):
+    def _prepare(self, goal, level):
         """Map, plan and policy of a goal; raises with the reason it cannot run."""
         pipe_map = network.load(network.world_path(goal.map))
         route_plan = planner.plan(pipe_map, list(goal.points), self.settings, self.max_drive_mm,
                                   goal.speed or None, not goal.no_home)
+        if level != ex.MANUAL:                      # manual only shows the plan
+            planner.check_runnable(route_plan)      # refused now, not stopped at that junction
         policy = yaml.safe_load(goal.policy) if goal.policy else None
         if policy is not None and not isinstance(policy, dict):
             raise ValueError('policy: a mapping {PAB name or default: {retries: N}} is needed, got %r' % policy)

@@ -21,6 +21,7 @@ Drive limit (config/sequencer.yaml) are passed in.
 """
 import collections
 
+from pirate.sequencer import goals
 from pirate.sequencer.junctions import STRAIGHT_CLAMP, required_clamp
 
 #: One junction of the map, as the route meets it.
@@ -184,3 +185,21 @@ def route_of(lines):
         return None
     map_name, rest = header[len('plan on '):].rsplit(': ', 1)
     return map_name, rest.rsplit(' (', 1)[0].split(ROUTE_JOIN)
+
+
+def check_runnable(route_plan, built=None):
+    """Raise :class:`PlanError` naming the first step the Pirate Server cannot
+    run (a PAB it does not have yet, or an option its goal cannot carry),
+    so that a mission through it is refused before the robot moves rather
+    than stopped at that junction. ``built(pab)``: default pirate.sequencer.goals.built."""
+    built = built or goals.built
+    for number, step in enumerate(route_plan.steps, 1):
+        where = 'step %d (%s%s%s)' % (number, step.pab, ' %s' % step.option if step.option else '',
+                                      ', %s' % step.junction.name if step.junction is not None else '')
+        if step.option and step.option not in goals.PAB_OPTIONS.get(step.pab, ()):
+            raise PlanError('%s: the Pirate Server\'s %s takes %s, not %s; the robot cannot take this route'
+                            % (where, step.pab, ' / '.join(goals.PAB_OPTIONS.get(step.pab, ('no option',))),
+                               step.option))
+        if not built(step.pab):
+            raise PlanError('%s: the Pirate Server cannot run %s yet; the robot cannot take this route'
+                            % (where, step.pab))

@@ -39,6 +39,12 @@ def run_route(args, out=print):
     if args.check:
         out('\n'.join(planner.format_plan(route_plan)))
         return 0
+    if args.level != 'manual':
+        try:
+            planner.check_runnable(route_plan)
+        except planner.PlanError as refused:
+            print('run_mission: %s' % refused, file=sys.stderr)
+            return 2
     rospy.init_node('run_mission', anonymous=True)
     client = actionlib.SimpleActionClient(names.MISSION_ACTION, MissionAction)
     if not client.wait_for_server(rospy.Duration(WAIT_FOR_SERVER_S)):
