@@ -123,3 +123,22 @@ def test_the_executive_retries_a_timeout_and_never_a_recall(status, seen):
     report = executive_node.report(Ending(status, 'm', result), 12.5)
     assert report.status == seen and report.odometry_mm == 12.5 and report.message == 'm'
     assert report.junction_missing is False
+
+
+class Server(object):
+    """An ActionClient's wait_for_server that answers after ``answers_after`` asks."""
+
+    def __init__(self, answers_after):
+        self.asks, self.answers_after = 0, answers_after
+
+    def wait_for_server(self, timeout):
+        self.asks += 1
+        return self.answers_after is not None and self.asks >= self.answers_after
+
+
+def test_waiting_for_the_server_polls_in_wall_time_until_it_answers_or_the_time_is_up():
+    from pirate.supervisory.goal_client import wait_for_server
+    server = Server(3)
+    assert wait_for_server(server, 30.0) and server.asks == 3
+    absent = Server(None)
+    assert not wait_for_server(absent, 0.3) and absent.asks >= 2

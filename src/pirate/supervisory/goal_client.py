@@ -19,8 +19,10 @@ so the timeout path is unit-tested without a master.
 """
 import collections
 import threading
+import time
 
 import actionlib
+import rospy
 from actionlib_msgs.msg import GoalStatus
 
 #: Terminal goal states in words.
@@ -71,3 +73,22 @@ class GoalClient(object):
     def _wake(self, _handle):
         with self._cond:
             self._cond.notify_all()
+
+
+def wait_for_server(client, wall_s):
+    """True once ``client``'s action server answers, within ``wall_s`` wall seconds.
+
+    Not actionlib's own timeout: under /use_sim_time a node's clock reads 0
+    until its first /clock message, and the first message then jumps past
+    any robot-time deadline set before it, so a server that is there was
+    reported absent (seen with run_mission started after the twin had run
+    for a while). Short waits in a wall-time loop instead.
+    """
+    deadline = time.monotonic() + wall_s
+    while not rospy.is_shutdown():
+        if client.wait_for_server(rospy.Duration(WAKE_S)):
+            return True
+        if time.monotonic() > deadline:
+            return False
+        time.sleep(WAKE_S)     # pace the polls (actionlib's wait may return at once)
+    return False

@@ -19,7 +19,7 @@ import rospy
 from pirate import names, paths
 from pirate.sequencer.guards import load_files
 from pirate.supervisory import route_client
-from pirate.supervisory.goal_client import GoalClient
+from pirate.supervisory.goal_client import GoalClient, wait_for_server
 from pirate.supervisory.mission import MissionError, MissionRunner, TracedPrimitive, load_mission, plan
 from pirate.msg import PirateAction, PirateGoal
 from pirate.srv import ServerStatus
@@ -39,7 +39,7 @@ class ActionGoalRunner(object):
 
     def connect(self, wall_timeout=30.0):
         """Wait for the Pirate Server and for it to see the robot; the reason if not."""
-        if not self._client.wait_for_server(rospy.Duration(self._timeout)):
+        if not wait_for_server(self._client, wall_timeout):
             return 'no Pirate Server at %s' % names.PIRATE_ACTION
         status = rospy.ServiceProxy(names.SERVER_STATUS_SERVICE, ServerStatus)
         deadline = time.monotonic() + wall_timeout
