@@ -248,12 +248,18 @@ def test_confirm_level_from_the_panel_each_pab_confirmed_by_its_blinking_button_
     assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND', 'DRIVE', 'HOME']
 
 
-def test_pause_and_resume_from_the_panel_and_stop_ends_the_mission():
-    robot = FakeRobot(0.3, hold_step='DRIVE')
+def _in_its_first_drive(robot):
+    """A level-full mission started from the panel in PAB mode, its first drive running."""
     rig, waiter, thread, result = _panel_and_mission(robot, ex.FULL)
     pab_mode(rig)
     thread.start()
     assert robot.entered.wait(WAIT_S)
+    return rig, waiter, thread, result
+
+
+def test_pause_and_resume_from_the_panel_and_stop_ends_the_mission():
+    robot = FakeRobot(0.3, hold_step='DRIVE')
+    rig, waiter, thread, result = _in_its_first_drive(robot)
     rig.press(M3_PAUSE)
     waiter.wait_for(lambda p: p.waiting_for.startswith(ex.WAIT_RESUME))
     rig.press(M6_CONFIRM)                 # level confirm: the resumed step waits for it too
@@ -277,10 +283,7 @@ class CountingRobot(FakeRobot):
 
 def test_a_panel_lost_mid_mission_pauses_it_safe_and_the_log_keeps_why():
     robot = CountingRobot(0.3, hold_step='DRIVE')
-    rig, waiter, thread, result = _panel_and_mission(robot, ex.FULL)
-    pab_mode(rig)
-    thread.start()
-    assert robot.entered.wait(WAIT_S)
+    rig, waiter, thread, result = _in_its_first_drive(robot)
     rig.mapper.panel_connected(False, 'the MIDI driver lost the panel device')
     waiter.wait_for(lambda p: p.waiting_for.startswith(ex.WAIT_RESUME))
     # The running drive was cancelled (the server's safe hold) and nothing else ran.
