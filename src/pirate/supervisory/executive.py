@@ -48,6 +48,16 @@ WAIT_RESUME, WAIT_CONFIRM = 'resume', 'confirmation'
 Outcome = collections.namedtuple('Outcome', 'status message log')
 
 
+def between_missions(text, next_level):
+    """The operator's word when no mission runs: (ok, message, the level of
+    the next mission whose goal names none). Only ``level X`` means
+    something then; the panel's level buttons work before a mission."""
+    words = text.strip().lower().split()
+    if len(words) == 2 and words[0] == 'level' and words[1] in LEVELS:
+        return True, 'autonomy level %s for the next mission' % words[1], words[1]
+    return False, 'no mission is running', next_level
+
+
 class Stop(Exception):
     """The mission ends here: status and reason."""
 

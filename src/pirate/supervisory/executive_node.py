@@ -185,19 +185,10 @@ class MissionExecutiveNode(object):
         with self._lock:
             running = self._running
         if running is None:
-            ok, message = self._between_missions(req.command)
+            ok, message, self._next_level = ex.between_missions(req.command, self._next_level)
         else:
             ok, message = running[1].command(req.command)
         return MissionCommandResponse(ok=ok, message=message)
-
-    def _between_missions(self, text):
-        """No mission runs: only ``level X`` means something (the level of
-        the next mission whose goal names none)."""
-        words = text.strip().lower().split()
-        if len(words) == 2 and words[0] == 'level' and words[1] in ex.LEVELS:
-            self._next_level = words[1]
-            return True, 'autonomy level %s for the next mission' % words[1]
-        return False, 'no mission is running'
 
     # --- where the robot is -------------------------------------------------
     def _publish_pose(self, _event):
