@@ -14,7 +14,7 @@ from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
 from visualization_msgs.msg import Marker, MarkerArray
 
-from ready import wait_robot_connected
+from ready import wait_robot_connected, wait_until
 from pirate import names
 from pirate.msg import MidiInput, MidiOutput, MissionAction, MissionGoal
 from pirate.srv import MissionCommand, ServerStatus
@@ -49,9 +49,12 @@ class Panel(object):
             assert self.cond.wait_for(predicate, WAIT_S), '%s; told %s' % (what, self.told[-5:])
 
     def plug(self):
+        """Publish panel events again; return once both ends have the connection (the
+        Mapper's side, which it tells, can see it before ours can send on it)."""
         told = len(self.told)
         self.pub = rospy.Publisher(names.MIDI_INPUT_TOPIC, MidiInput, queue_size=10)
         self.wait(lambda: any(t.startswith('panel connected') for t in self.told[told:]), 'the Mapper sees the panel')
+        wait_until(lambda: self.pub.get_num_connections() > 0, 'our panel publisher connected to the Mapper')
 
     def unplug(self):
         self.pub.unregister()
