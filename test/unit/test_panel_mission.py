@@ -294,3 +294,22 @@ def test_a_panel_lost_mid_mission_pauses_it_safe_and_the_log_keeps_why():
     outcome = result['outcome']
     assert outcome.status == 'succeeded', outcome.message
     assert any('operator panel disconnected' in line and 'MIDI driver' in line for line in outcome.log)
+
+
+def test_a_mission_whose_executive_falls_silent_is_dropped_and_pab_buttons_work_again():
+    watch = mission_buttons.ExecutiveWatch(3.0)
+    assert not watch.lost(10.0, active=False)
+    watch.heard(10.0)
+    assert not watch.lost(12.0, active=True)
+    watch.heard(12.5)
+    assert not watch.lost(15.0, active=True) and watch.lost(15.6, active=True)
+    assert not watch.lost(16.0, active=False)
+    assert not watch.lost(30.0, active=True) and watch.lost(33.1, active=True)   # active, never heard since
+    rig = rig_with(Commands())
+    pab_mode(rig)
+    rig.mapper.mission_progress(feedback(level=ex.FULL))
+    rig.press(TRACK_NEXT)
+    assert rig.pab.goals == []
+    rig.mapper.mission_ended('lost', 'no word from the mission executive for 3 s')
+    rig.press(TRACK_NEXT)
+    assert len(rig.pab.goals) == 1

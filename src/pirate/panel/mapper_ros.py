@@ -22,7 +22,8 @@ Setpoint / Control / Limit objects (report 4.5: one instance of each)::
 - the mission: follows the mission executive's feedback and result
   (``names.MISSION_ACTION``) and sends the mission buttons' commands to
   its ``names.MISSION_COMMAND_SERVICE`` from a worker thread (a slow or
-  absent executive never blocks the panel);
+  absent executive never blocks the panel); a mission whose executive is
+  silent (no action status) for ``MISSION_SILENCE_S`` is dropped;
 - the panel's presence (pirate.panel.presence): the publishers of
   ``names.MIDI_INPUT_TOPIC`` and the MIDI driver's word on
   ``names.PANEL_DEVICE_TOPIC``, checked every tick.
@@ -35,14 +36,18 @@ import rospy
 
 from pirate import names
 from pirate.panel.mapper import Mapper
+from pirate.panel.mission_buttons import ExecutiveWatch
 from pirate.panel.presence import PanelPresence
 from pirate.msg import MidiInput, MidiOutput, MissionActionFeedback, MissionActionResult
 from pirate.srv import MissionCommand
+from actionlib_msgs.msg import GoalStatusArray
 from std_msgs.msg import Bool, String
 
 TICK_PERIOD_S = 0.1
 #: How long a mission command waits for the executive's service, wall s.
 MISSION_SERVICE_WAIT_S = 2.0
+#: Wall s without the executive's action status before the panel drops its mission.
+MISSION_SILENCE_S = 3.0
 
 
 class MissionCommandClient(object):
@@ -100,10 +105,13 @@ class MapperRos(object):
                              self._publish_led, self._tell, time.monotonic, mission=mission)
         mission.reply = self.mapper.mission_reply
         self._presence = PanelPresence()
+        self._executive = ExecutiveWatch(MISSION_SILENCE_S)
         self._sub = rospy.Subscriber(names.MIDI_INPUT_TOPIC, MidiInput, self._on_midi,
                                      queue_size=100)
         self._others = [
             rospy.Subscriber(names.PANEL_DEVICE_TOPIC, Bool, lambda msg: self._presence.device(msg.data)),
+            rospy.Subscriber(names.MISSION_ACTION + '/status', GoalStatusArray,
+                             lambda msg: self._executive.heard(time.monotonic()), queue_size=1),
             rospy.Subscriber(names.MISSION_ACTION + '/feedback', MissionActionFeedback,
                              lambda msg: self.mapper.mission_progress(msg.feedback), queue_size=10),
             rospy.Subscriber(names.MISSION_ACTION + '/result', MissionActionResult,
@@ -125,6 +133,9 @@ class MapperRos(object):
         change = self._presence.update(self._sub.get_num_connections())
         if change is not None:
             self.mapper.panel_connected(*change)
+        if self._executive.lost(time.monotonic(), self.mapper.mission.active):
+            self.mapper.mission_ended('lost', 'no word from the mission executive for %.0f s; the PAB '
+                                      'buttons are yours again' % MISSION_SILENCE_S)
         self.mapper.tick()
         if self._publish_arrays:
             self._setpoint.tick()

@@ -142,6 +142,28 @@ class MissionPanel(object):
         return out
 
 
+class ExecutiveWatch(object):
+    """Is the mission executive still there? Its action server reports its
+    status several times a second; a mission the panel believes active but
+    not heard of for ``limit_s`` is lost (its node died), so the panel stops
+    refusing PAB buttons for it rather than lock the operator out."""
+
+    def __init__(self, limit_s):
+        self.limit_s, self._heard = limit_s, None
+
+    def heard(self, now_s):
+        self._heard = now_s
+
+    def lost(self, now_s, active):
+        """True once for a mission that is active but silent too long."""
+        if not active:
+            self._heard = None
+            return False
+        if self._heard is None:
+            self._heard = now_s          # active since now, as far as we know
+        return now_s - self._heard > self.limit_s
+
+
 def _direction(distance_mm):
     """Backwards (a reversing drive, a junction searched rear first) or
     not: a panel button without a distance goes forwards."""
