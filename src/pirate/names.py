@@ -13,6 +13,7 @@ JOINT_STATES_TOPIC = '/joint_states'          # sensor_msgs/JointState (RViz)
 IMU_TOPIC = '/pirate/imu'                     # sensor_msgs/Imu, rear-part roll
 MIDI_INPUT_TOPIC = '/ram/input/midi'          # pirate/MidiInput
 MIDI_OUTPUT_TOPIC = '/ram/input/midiout'      # pirate/MidiOutput
+PANEL_DEVICE_TOPIC = '/ram/input/midi_device'  # std_msgs/Bool, latched: the MIDI driver has its panel
 OPERATOR_TOPIC = '/pirate/operator'           # std_msgs/String, the panel's messages
 JOINT_SENSORS_SERVICE = '/pirate/joint_sensors'   # pirate/JointSensors
 IMU_SENSOR_SERVICE = '/pirate/imu_sensor'         # pirate/ImuSensor

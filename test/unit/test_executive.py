@@ -257,3 +257,12 @@ def test_pause_word_before_the_first_step_holds_the_mission_until_resume():
     assert run.command('resume')[0]
     thread.join(WAIT_S)
     assert result['outcome'].status == 'succeeded'
+
+
+@pytest.mark.parametrize('text, ok, level', [
+    ('level confirm', True, ex.CONFIRM), ('level auto', False, ex.FULL), ('pause', False, ex.FULL),
+    ('confirm', False, ex.FULL)])
+def test_between_missions_only_the_next_missions_level_can_be_set(text, ok, level):
+    answer = ex.between_missions(text, ex.FULL)
+    assert answer[0] is ok and answer[2] == level
+    assert ok or answer[1] == 'no mission is running'

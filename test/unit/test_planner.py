@@ -9,6 +9,7 @@ import pytest
 import yaml
 
 from pirate import paths
+from pirate.sequencer import goals
 from pirate.sequencer.junctions import required_clamp
 from pirate.supervisory import planner
 from pirate.world import network
@@ -204,3 +205,28 @@ def test_run_mission_route_refuses_a_route_before_sending_anything(capsys):
     from pirate.supervisory import mission_node
     assert mission_node.main(['run_mission', '--route', 'inspection_90', 'launch_pit', 'nowhere']) == 2
     assert "no point 'nowhere'" in capsys.readouterr().err
+
+
+def test_a_route_the_server_cannot_run_yet_is_refused_before_anything_moves():
+    """Today's server has no junction PABs: a route through a bend is refused
+    at its junction step, by name; once the PAB exists the same route passes."""
+    route_plan = run(world(BEND_LEFT, {'pit': 300, 'target': 3000}), 'pit', 'target')
+    with pytest.raises(planner.PlanError, match=r"step 3 \(MITRE_BEND LEFT, mitre_1\): the Pirate Server cannot "
+                                                r"run MITRE_BEND yet"):
+        planner.check_runnable(route_plan, built=lambda pab: pab != 'MITRE_BEND')
+    planner.check_runnable(route_plan, built=lambda pab: True)
+
+
+def test_a_junction_direction_the_goal_cannot_carry_is_refused(monkeypatch):
+    monkeypatch.setitem(goals.PAB_OPTIONS, 'MITRE_BEND', ('LEFT', 'RIGHT'))   # a goal interface without DOWN
+    net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'mitre', 'turn': 'down'},
+                 {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 2500})
+    with pytest.raises(planner.PlanError, match="MITRE_BEND takes LEFT / RIGHT, not DOWN"):
+        planner.check_runnable(run(net, 'a', 'b'), built=lambda pab: True)
+
+
+def test_run_mission_route_refuses_a_route_the_server_cannot_run_before_sending_anything(monkeypatch, capsys):
+    from pirate.supervisory import mission_node
+    monkeypatch.setattr(goals, 'built', lambda pab: pab != 'MITRE_BEND')
+    assert mission_node.main(['run_mission', '--route', 'inspection_90', 'launch_pit', 'target']) == 2
+    assert 'cannot run MITRE_BEND yet' in capsys.readouterr().err

@@ -8,6 +8,7 @@ robot. Pure Python: the map comes in as the dict rosparam loaded (or
 """
 import collections
 
+from pirate.panel import mission_buttons
 from pirate.robot import safety, tables
 from pirate.sequencer import goals
 
@@ -32,8 +33,10 @@ Entry = collections.namedtuple(
 #: A PAB button's goal: code (Pirate.action name), distance mm, speed mm/s, option
 #: code. No pipe diameter: every panel goal uses the launch's ``pipe_diameter``.
 Goal = collections.namedtuple('Goal', 'name distance speed option')
+#: ``mission_buttons``: channel -> pirate.panel.mission_buttons.MissionButton,
+#: the PAB-mode job of buttons that act only in manual mode in ``channels``.
 PanelConfig = collections.namedtuple(
-    'PanelConfig', 'name press_threshold burst_max_per_s initial_modes channels')
+    'PanelConfig', 'name press_threshold burst_max_per_s initial_modes channels mission_buttons')
 
 
 class ConfigError(ValueError):
@@ -127,7 +130,8 @@ def from_params(params):
     return PanelConfig(str(params.get('panel_name', '')),
                        int(params.get('press_threshold', 64)),
                        float(params.get('burst_max_per_s', 500)),
-                       initial, channels)
+                       initial, channels,
+                       mission_buttons.from_params(params.get('mission_buttons'), channels, ConfigError))
 
 
 def load(path):

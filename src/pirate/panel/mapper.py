@@ -26,7 +26,12 @@ Rules it enforces (and why):
   LED (the hardware panel has no screen); every message goes to ``log``,
   which the ROS edge shows on the virtual panel;
 - limits are not checked here: every write goes through pirate.robot.safety inside
-  Setpoint / Limit.
+  Setpoint / Limit;
+- in PAB mode the map's ``mission_buttons`` talk to the mission executive
+  (pirate.panel.mission_buttons); while a mission runs its steps are the
+  only PABs (a PAB button confirms the step that waits for it, or is
+  refused), Stop cancels the mission as well, and a panel that disconnects
+  pauses it (:meth:`panel_connected`).
 
 Bad input (unknown channel, value outside 0-127 or not an integer, a burst
 of events on one channel) is logged once per reason and ignored.
@@ -39,6 +44,7 @@ import threading
 from pirate.robot import commands, safety, tables
 from pirate.robot.hold import safe_hold
 from pirate.panel import config as panel_config
+from pirate.panel import mission_buttons
 from pirate.panel.config import MANUAL, PAB
 
 #: The control-array index where play / stop / no-limits-all travel (SPEC 3).
@@ -59,9 +65,11 @@ class Mapper(object):
     it reports the end of a goal to :meth:`pab_result`.
     ``led(button, on)`` lights a panel LED; ``log(text)`` tells the operator;
     ``clock()`` returns seconds (monotonic), used for burst detection.
+    ``mission``: ``command(text)`` to the mission executive, whose answer
+    comes back through :meth:`mission_reply` (None: no mission executive).
     """
 
-    def __init__(self, config, setpoint, control, limit, pab_client, led, log, clock):
+    def __init__(self, config, setpoint, control, limit, pab_client, led, log, clock, mission=None):
         if not isinstance(config, panel_config.PanelConfig):
             config = panel_config.from_params(config)
         self._config = config
@@ -84,6 +92,10 @@ class Mapper(object):
         self._pab_channel = None    # the PAB button whose goal runs (its LED is on)
         self._sent_channel = None   # the PAB button of the last goal sent (its result may come late)
         self._blinks = {}           # button -> LED toggles still to do
+        self._ticks = 0             # 10 Hz ticks, the phase of the mission's blink
+        self.mission = mission_buttons.MissionPanel(config.mission_buttons, mission, log)
+        self._pab_keys = {e.channel: mission_buttons.goal_key(e.goal)
+                          for e in config.channels.values() if e.action == 'pab'}
         setpoint.enabled = False
         limit.enabled = False
         for name, mode in config.initial_modes.items():
@@ -116,6 +128,11 @@ class Mapper(object):
                                'ignored' % (channel, entry.control, value))
                 return
             if entry.action != 'stop' and self._in_burst(entry):
+                return
+            button = self._config.mission_buttons.get(channel) if self.operation_mode == PAB else None
+            if button is not None:
+                if self._press_edge(channel, value):
+                    self.mission.press(button)
                 return
             if entry.action == 'set_modifier':
                 self._set_held = value >= self._config.press_threshold
@@ -194,6 +211,7 @@ class Mapper(object):
         self._log('playing (%s mode)' % self.operation_mode)
 
     def _on_stop(self, entry, value):
+        self.mission.stop()
         if self._pab.is_active():     # a PAB sent by any client, in either mode (issue 14.8)
             self._pab.cancel()
             self._log('Stop: the running PAB is cancelled')
@@ -240,6 +258,13 @@ class Mapper(object):
         if not self.playing:
             self._refuse(entry, 'press Play first')
             return
+        if self.mission.is_waiting_step(self._pab_keys[entry.channel]):
+            self.mission.send('confirm')
+            return
+        if self.mission.active:
+            self._refuse(entry, 'a mission is running: its steps are its PABs (a blinking button '
+                         'confirms the step that waits; Stop cancels the mission)')
+            return
         if self._pab.is_active():
             self._refuse(entry, 'a PAB is running; wait for it or press Stop to cancel it')
             return
@@ -270,6 +295,34 @@ class Mapper(object):
                 self._blinks[self._sent_channel] = BLINK_TOGGLES
             self._sent_channel = None
 
+    # --- the mission executive's word (the ROS edge calls these) ---------------
+
+    def mission_progress(self, feedback):
+        """A mission feedback (step, level, what it waits for)."""
+        with self._lock:
+            self.mission.progress(feedback)
+
+    def mission_ended(self, status, message):
+        with self._lock:
+            self.mission.ended(status, message)
+
+    def mission_reply(self, command, ok, message):
+        with self._lock:
+            self.mission.reply(command, ok, message)
+
+    def panel_connected(self, connected, reason):
+        """The panel came or went (pirate.panel.presence). Gone while a
+        mission runs: the mission pauses, holding the robot safe, because the
+        operator has lost his Stop; it resumes only on the operator's word."""
+        with self._lock:
+            if connected:
+                self._log('panel connected (%s)%s' % (reason, '; the mission stays paused until you '
+                          'resume it' if self.mission.paused else ''))
+                self.refresh_leds(force=True)
+            else:
+                self._log('panel disconnected: %s' % reason)
+                self.mission.disconnected(reason)
+
     # --- outputs ---------------------------------------------------------------
 
     def safe_setpoints(self):
@@ -299,29 +352,38 @@ class Mapper(object):
         ``force`` sends every LED even if unchanged (a panel just connected).
         """
         with self._lock:
+            wanted = {}
             for entry in self._config.channels.values():
                 if entry.action == 'control_mode':
-                    on = self._control.mode_of(entry.target) == entry.on_mode
+                    wanted[entry.channel] = self._control.mode_of(entry.target) == entry.on_mode
                 elif entry.action == 'operation_mode':
-                    on = self.operation_mode == PAB
+                    wanted[entry.channel] = self.operation_mode == PAB
                 elif entry.action == 'play':
-                    on = self.playing
+                    wanted[entry.channel] = self.playing
                 elif entry.action == 'stop':
-                    on = not self.playing
+                    wanted[entry.channel] = not self.playing
                 elif entry.action == 'pab':
-                    on = entry.channel == self._pab_channel
+                    wanted[entry.channel] = entry.channel == self._pab_channel
                 elif entry.action == 'set_modifier':
-                    on = self._set_held
-                else:
-                    continue
-                if entry.channel not in self._blinks:
-                    self._set_led(entry.channel, on, force)
+                    wanted[entry.channel] = self._set_held
+            wanted.update(self._mission_leds())
+            for channel, on in wanted.items():
+                if channel not in self._blinks:
+                    self._set_led(channel, on, force)
+
+    def _mission_leds(self):
+        """PAB mode: the mission buttons and the blinking waiting PAB; in
+        manual mode the M buttons are immediate stops and stay dark."""
+        if self.operation_mode != PAB:
+            return {channel: False for channel in self._config.mission_buttons}
+        return self.mission.leds(self._ticks, self._pab_keys)
 
     def tick(self):
         """Called at 10 Hz: follow the PAB state and the control modes on the LEDs."""
         with self._lock:
             if self._pab_channel is not None and not self._pab.is_active():
                 self._pab_channel = None
+            self._ticks += 1
             self._blink()
             self.refresh_leds()
 

@@ -18,18 +18,62 @@ Setpoint / Control / Limit objects (report 4.5: one instance of each)::
 - runs a 10 Hz timer that calls ``mapper.tick()`` (LEDs follow modes a PAB
   changed) and, unless ``publish_arrays=False``, ``setpoint.tick()`` and
   ``limit.tick()`` (the 10 Hz publishing of report 4.6; pass False if the
-  node ticks them itself).
+  node ticks them itself);
+- the mission: follows the mission executive's feedback and result
+  (``names.MISSION_ACTION``) and sends the mission buttons' commands to
+  its ``names.MISSION_COMMAND_SERVICE`` from a worker thread (a slow or
+  absent executive never blocks the panel); a mission whose executive is
+  silent (no action status) for ``MISSION_SILENCE_S`` is dropped;
+- the panel's presence (pirate.panel.presence): the publishers of
+  ``names.MIDI_INPUT_TOPIC`` and the MIDI driver's word on
+  ``names.PANEL_DEVICE_TOPIC``, checked every tick.
 """
+import queue
+import threading
 import time
 
 import rospy
 
 from pirate import names
 from pirate.panel.mapper import Mapper
-from pirate.msg import MidiInput, MidiOutput
-from std_msgs.msg import String
+from pirate.panel.mission_buttons import ExecutiveWatch
+from pirate.panel.presence import PanelPresence
+from pirate.msg import MidiInput, MidiOutput, MissionActionFeedback, MissionActionResult
+from pirate.srv import MissionCommand
+from actionlib_msgs.msg import GoalStatusArray
+from std_msgs.msg import Bool, String
 
 TICK_PERIOD_S = 0.1
+#: How long a mission command waits for the executive's service, wall s.
+MISSION_SERVICE_WAIT_S = 2.0
+#: Wall s without the executive's action status before the panel drops its mission.
+MISSION_SILENCE_S = 3.0
+
+
+class MissionCommandClient(object):
+    """The mapper's mission client: commands go out in order from one
+    worker thread; each answer goes back to ``reply(command, ok, message)``."""
+
+    def __init__(self):
+        self.reply = None
+        self._todo = queue.Queue()
+        self._proxy = rospy.ServiceProxy(names.MISSION_COMMAND_SERVICE, MissionCommand)
+        threading.Thread(target=self._work, name='mission_commands', daemon=True).start()
+
+    def command(self, text):
+        self._todo.put(text)
+
+    def _work(self):
+        while not rospy.is_shutdown():
+            text = self._todo.get()
+            try:
+                self._proxy.wait_for_service(MISSION_SERVICE_WAIT_S)
+                answer = self._proxy(text)
+                ok, message = answer.ok, answer.message
+            except (rospy.ROSException, rospy.ServiceException) as err:
+                ok, message = False, 'no mission executive answers (%s)' % err
+            if self.reply is not None:
+                self.reply(text, ok, message)
 
 
 class _LedResync(rospy.SubscribeListener):
@@ -56,10 +100,23 @@ class MapperRos(object):
         self._operator_pub = rospy.Publisher(names.OPERATOR_TOPIC, String, queue_size=20, latch=True)
         if config is None:
             config = rospy.get_param('~')
+        mission = MissionCommandClient()
         self.mapper = Mapper(config, setpoint, control, limit, pab_client,
-                             self._publish_led, self._tell, time.monotonic)
+                             self._publish_led, self._tell, time.monotonic, mission=mission)
+        mission.reply = self.mapper.mission_reply
+        self._presence = PanelPresence()
+        self._executive = ExecutiveWatch(MISSION_SILENCE_S)
         self._sub = rospy.Subscriber(names.MIDI_INPUT_TOPIC, MidiInput, self._on_midi,
                                      queue_size=100)
+        self._others = [
+            rospy.Subscriber(names.PANEL_DEVICE_TOPIC, Bool, lambda msg: self._presence.device(msg.data)),
+            rospy.Subscriber(names.MISSION_ACTION + '/status', GoalStatusArray,
+                             lambda msg: self._executive.heard(time.monotonic()), queue_size=1),
+            rospy.Subscriber(names.MISSION_ACTION + '/feedback', MissionActionFeedback,
+                             lambda msg: self.mapper.mission_progress(msg.feedback), queue_size=10),
+            rospy.Subscriber(names.MISSION_ACTION + '/result', MissionActionResult,
+                             lambda msg: self.mapper.mission_ended(msg.result.status, msg.result.message),
+                             queue_size=10)]
         self._timer = rospy.Timer(rospy.Duration(TICK_PERIOD_S), self._tick)
 
     def _publish_led(self, button, on):
@@ -73,6 +130,12 @@ class MapperRos(object):
         self.mapper.handle(msg.channel, msg.value)
 
     def _tick(self, _event):
+        change = self._presence.update(self._sub.get_num_connections())
+        if change is not None:
+            self.mapper.panel_connected(*change)
+        if self._executive.lost(time.monotonic(), self.mapper.mission.active):
+            self.mapper.mission_ended('lost', 'no word from the mission executive for %.0f s; the PAB '
+                                      'buttons are yours again' % MISSION_SILENCE_S)
         self.mapper.tick()
         if self._publish_arrays:
             self._setpoint.tick()
@@ -81,4 +144,5 @@ class MapperRos(object):
     def shutdown(self):
         """Stop the timer and the subscription (node shutdown, tests)."""
         self._timer.shutdown()
-        self._sub.unregister()
+        for sub in [self._sub] + self._others:
+            sub.unregister()

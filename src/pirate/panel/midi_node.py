@@ -1,7 +1,9 @@
 """The MIDI driver nodes: panel -> MidiInput, MidiOutput -> panel LEDs.
 
 ``midi_input``: publishes a pirate/MidiInput on ``names.MIDI_INPUT_TOPIC``
-for every control change the panel sends. ``midi_output``: subscribes
+for every control change the panel sends, and on ``names.PANEL_DEVICE_TOPIC``
+(latched std_msgs/Bool) whether it has the panel (the Mapper pauses a
+mission when the panel is unplugged). ``midi_output``: subscribes
 ``names.MIDI_OUTPUT_TOPIC`` and lights the button LEDs. Both choose the
 device by ``~device`` (an id or part of the name from ``midi_devices``;
 '' = the first panel found), wait with a clear message while it is absent,
@@ -18,6 +20,7 @@ import rospy
 
 from pirate import health, names
 from pirate.msg import MidiInput, MidiOutput
+from std_msgs.msg import Bool
 from pirate.panel import midi
 from pirate.panel.midi_backend import PygameMidiBackend
 
@@ -41,10 +44,15 @@ def main_input():
         return main_devices()
     rospy.init_node('midi_input')
     pub = rospy.Publisher(names.MIDI_INPUT_TOPIC, MidiInput, queue_size=200)
+    device_pub = rospy.Publisher(names.PANEL_DEVICE_TOPIC, Bool, queue_size=1, latch=True)
     link = _link(True)
     rate = rospy.Rate(float(rospy.get_param('~poll_hz', 200.0)))
+    had = None
     while not rospy.is_shutdown():
         link.step(time.monotonic())
+        if link.connected != had:
+            had = link.connected
+            device_pub.publish(Bool(data=had))
         for channel, value in link.read():
             pub.publish(MidiInput(channel=channel, value=value))
         try:

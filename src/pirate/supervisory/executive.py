@@ -39,9 +39,23 @@ LEVELS = (FULL, CONFIRM, MANUAL)
 #: odometry) or None; ``junction_missing`` when it searched and found none.
 Report = collections.namedtuple('Report', 'status message odometry_mm junction_odometry_mm junction_missing')
 #: Progress for the operator.
-Progress = collections.namedtuple('Progress', 'step steps pab along_m time_left_s level state waiting_for')
+#: ``option`` and ``distance_mm`` name the PAB exactly (the panel blinks its button).
+Progress = collections.namedtuple('Progress', 'step steps pab option distance_mm along_m time_left_s level '
+                                              'state waiting_for')
+#: How ``waiting_for`` begins when the executive waits for the operator.
+WAIT_RESUME, WAIT_CONFIRM = 'resume', 'confirmation'
 #: How the mission ended: succeeded / aborted / cancelled / mismatch / manual.
 Outcome = collections.namedtuple('Outcome', 'status message log')
+
+
+def between_missions(text, next_level):
+    """The operator's word when no mission runs: (ok, message, the level of
+    the next mission whose goal names none). Only ``level X`` means
+    something then; the panel's level buttons work before a mission."""
+    words = text.strip().lower().split()
+    if len(words) == 2 and words[0] == 'level' and words[1] in LEVELS:
+        return True, 'autonomy level %s for the next mission' % words[1], words[1]
+    return False, 'no mission is running', next_level
 
 
 class Stop(Exception):
@@ -69,9 +83,10 @@ class Executive(object):
         self.step_index, self.state, self.waiting_for = 0, 'ready', ''
 
     # --- operator side, any thread ----------------------------------------
-    def pause(self):
-        """Hold the robot safe and wait for :meth:`resume`."""
-        self._stop_running('pause', '_paused')
+    def pause(self, reason=''):
+        """Hold the robot safe and wait for :meth:`resume`; ``reason`` goes
+        to the log (e.g. the panel that disconnected)."""
+        self._stop_running('pause' + (' (%s)' % reason if reason else ''), '_paused')
 
     def resume(self):
         """Go on with the step that was paused."""
@@ -115,6 +130,10 @@ class Executive(object):
         panel): (ok, message); an unknown word changes nothing."""
         words = text.strip().lower().split()
         simple = {'pause': self.pause, 'resume': self.resume, 'confirm': self.confirm, 'cancel': self.cancel}
+        if len(words) > 1 and words[0] == 'pause':
+            reason = text.strip().split(None, 1)[1]
+            self.pause(reason)
+            return True, 'pause (%s): done (step %d)' % (reason, self.step_index + 1)
         if len(words) == 1 and words[0] in simple:
             simple[words[0]]()
             return True, '%s: done (step %d, %s)' % (words[0], self.step_index + 1, self.state)
@@ -124,7 +143,7 @@ class Executive(object):
             except ValueError as refused:
                 return False, str(refused)
             return True, 'autonomy level %s from the next step' % words[1]
-        return False, 'unknown command %r (pause, resume, confirm, cancel, level full|confirm|manual)' % text
+        return False, 'unknown command %r (pause [reason], resume, confirm, cancel, level full|confirm|manual)' % text
 
     # --- the mission thread -----------------------------------------------
     def run(self):
@@ -181,9 +200,9 @@ class Executive(object):
         with self._cond:
             while not self._cancelled:
                 if self._paused:
-                    self._set_waiting('resume (paused)')
+                    self._set_waiting('%s (paused)' % WAIT_RESUME)
                 elif self.level == CONFIRM and self._confirmed != self.step_index:
-                    self._set_waiting('confirmation of step %d (%s)' % (self.step_index + 1, step.pab))
+                    self._set_waiting('%s of step %d (%s)' % (WAIT_CONFIRM, self.step_index + 1, step.pab))
                 else:
                     self._set_waiting('')
                     self._running = True
@@ -264,8 +283,9 @@ class Executive(object):
         return total
 
     def _publish(self, step):
-        self._progress(Progress(self.step_index + 1, len(self.plan.steps), step.pab, self.localiser.along_m,
-                                self.time_left_s(), self.level, self.state, self.waiting_for))
+        self._progress(Progress(self.step_index + 1, len(self.plan.steps), step.pab, step.option or '',
+                                step.distance_mm, self.localiser.along_m, self.time_left_s(), self.level,
+                                self.state, self.waiting_for))
 
     def _say(self, text):
         self.log.append(text)

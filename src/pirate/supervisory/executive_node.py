@@ -10,7 +10,9 @@ what it waits for) and cancel a mission. One mission at a time.
 
 The operator's word during a mission: the ``/pirate/mission/command``
 service (pirate/MissionCommand: pause, resume, confirm, cancel,
-level full|confirm|manual), which the panel calls. The estimated position
+level full|confirm|manual), which the panel's mission buttons call; between
+missions ``level X`` sets the level of the next mission whose goal names
+none (the panel's level buttons work before a mission). The estimated position
 is published as a pose on the map (``/pirate/mission/pose``, frame ``map``)
 and as millimetres along the path (``/pirate/mission/along_mm``), 5 Hz.
 
@@ -35,26 +37,24 @@ from pirate.sequencer.clamp_state import IDLE_CLAMPED
 from pirate.srv import MissionCommand, MissionCommandResponse, ServerStatus
 from pirate.supervisory import executive as ex
 from pirate.supervisory import planner
+from pirate.supervisory.goal_client import GoalClient
 from pirate.supervisory.localiser import Localiser
 from pirate.supervisory.plan_cli import load_settings
 from pirate.world import network
 from pirate.world.pose import path_points, pose_along
 
-STATUS = {GoalStatus.SUCCEEDED: 'succeeded', GoalStatus.ABORTED: 'aborted', GoalStatus.PREEMPTED: 'preempted',
-          GoalStatus.REJECTED: 'rejected', GoalStatus.RECALLED: 'rejected'}
 POSE_PERIOD_S = 0.2
 ROUTE_RGBA = (0.1, 0.8, 0.2, 0.9)        # the planned route, green
 LINE_WIDTH_M = 0.008
 
 
 class ActionRobot(object):
-    """The executive's robot: one Pirate Server goal at a time over actionlib."""
+    """The executive's robot: one Pirate Server goal at a time
+    (pirate.supervisory.goal_client), its end as an :data:`ex.Report`."""
 
     def __init__(self, timeout_s):
-        self._client = actionlib.ActionClient(names.PIRATE_ACTION, PirateAction)
-        self._timeout = timeout_s
-        self._cond = threading.Condition()
-        self._handle = None
+        self.goals = GoalClient(actionlib.ActionClient(names.PIRATE_ACTION, PirateAction), timeout_s,
+                                rospy.get_time, rospy.is_shutdown)
         self.odometry_mm = None
         self._status = rospy.ServiceProxy(names.SERVER_STATUS_SERVICE, ServerStatus)
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state, queue_size=5)
@@ -71,34 +71,7 @@ class ActionRobot(object):
                              self.odometry_mm, None, False)
         goal = PirateGoal(name=goals.CODES[step.pab], pipe_diameter=step.pipe_diameter,
                           distance=step.distance_mm, speed=step.speed_mm_s, option=option)
-        deadline = rospy.get_time() + self._timeout     # robot time, as ~goal_timeout says
-        with self._cond:
-            self._handle = self._client.send_goal(goal, transition_cb=self._transition)
-            while not self._done() and rospy.get_time() < deadline:
-                self._cond.wait(0.1)    # woken by transitions; the deadline is robot time
-            ended = self._done()
-            handle, self._handle = self._handle, None
-        if not ended:
-            handle.cancel()
-            return ex.Report('aborted', 'no result within %.0f s; goal cancelled' % self._timeout,
-                             self.odometry_mm, None, False)
-        return self._report(handle)
-
-    def _done(self):
-        return rospy.is_shutdown() or self._handle.get_comm_state() == actionlib.CommState.DONE
-
-    def _transition(self, _handle):
-        with self._cond:
-            self._cond.notify_all()
-
-    def _report(self, handle):
-        result = handle.get_result()
-        status = STATUS.get(handle.get_goal_status(), 'aborted')
-        if result is None:
-            return ex.Report(status, 'no result', self.odometry_mm, None, False)
-        found = getattr(result, 'junction_odometry', float('nan'))
-        return ex.Report(status, result.message, self.odometry_mm, None if math.isnan(found) else found,
-                         bool(getattr(result, 'junction_missing', False)))
+        return report(self.goals.run(goal), self.odometry_mm)
 
     def clamped(self):
         """The Pirate Server's sensed state now: Idle Clamped or not."""
@@ -109,10 +82,18 @@ class ActionRobot(object):
 
     def cancel(self):
         """Cancel the running goal (any thread)."""
-        with self._cond:
-            handle = self._handle
-        if handle is not None:
-            handle.cancel()
+        self.goals.cancel()
+
+
+def report(ending, odometry_mm):
+    """The executive's :data:`ex.Report` of a goal's :data:`Ending`: a goal
+    that ran out of time counts as aborted (the policy may retry it), one
+    recalled before it started as rejected (a retry cannot help)."""
+    status = {'timeout': 'aborted', 'interrupted': 'aborted', 'recalled': 'rejected'}.get(ending.status,
+                                                                                          ending.status)
+    found = getattr(ending.result, 'junction_odometry', float('nan'))
+    return ex.Report(status, ending.message, odometry_mm, None if math.isnan(found) else found,
+                     bool(getattr(ending.result, 'junction_missing', False)))
 
 
 class MissionExecutiveNode(object):
@@ -123,6 +104,7 @@ class MissionExecutiveNode(object):
         self.robot = ActionRobot(float(rospy.get_param('~goal_timeout', 600.0)))
         self._lock = threading.Lock()
         self._running = None            # (goal handle, executive, map)
+        self._next_level = ex.FULL      # for a goal that names no level; the panel sets it between missions
         self._pose_pub = rospy.Publisher(names.MISSION_POSE_TOPIC, PoseStamped, queue_size=1)
         self._along_pub = rospy.Publisher(names.MISSION_ALONG_TOPIC, Float64, queue_size=1)
         self._markers_pub = rospy.Publisher(names.MISSION_MARKERS_TOPIC, MarkerArray, queue_size=2, latch=True)
@@ -136,10 +118,11 @@ class MissionExecutiveNode(object):
     # --- goals --------------------------------------------------------------
     def _on_goal(self, handle):
         goal = handle.get_goal()
+        level = goal.level or self._next_level
         try:
-            pipe_map, route_plan, policy = self._prepare(goal)
+            pipe_map, route_plan, policy = self._prepare(goal, level)
             run = ex.Executive(route_plan, self.robot, Localiser(pipe_map.points[goal.points[0]], self.settings),
-                               self.settings, policy=policy, level=goal.level or ex.FULL,
+                               self.settings, policy=policy, level=level,
                                progress=lambda p: self._feedback(handle, p), out=rospy.loginfo)
         except (network.WorldError, planner.PlanError, ValueError, yaml.YAMLError) as refused:
             self._refuse(handle, str(refused))
@@ -153,11 +136,13 @@ class MissionExecutiveNode(object):
         self._markers_pub.publish(route_markers(pipe_map, goal.points))
         threading.Thread(target=self._run, args=(handle, run), name='mission', daemon=True).start()
 
-    def _prepare(self, goal):
+    def _prepare(self, goal, level):
         """Map, plan and policy of a goal; raises with the reason it cannot run."""
         pipe_map = network.load(network.world_path(goal.map))
         route_plan = planner.plan(pipe_map, list(goal.points), self.settings, self.max_drive_mm,
                                   goal.speed or None, not goal.no_home)
+        if level != ex.MANUAL:                      # manual only shows the plan
+            planner.check_runnable(route_plan)      # refused now, not stopped at that junction
         policy = yaml.safe_load(goal.policy) if goal.policy else None
         if policy is not None and not isinstance(policy, dict):
             raise ValueError('policy: a mapping {PAB name or default: {retries: N}} is needed, got %r' % policy)
@@ -190,7 +175,8 @@ class MissionExecutiveNode(object):
     def _feedback(self, handle, progress):
         if handle is not None and not rospy.is_shutdown():
             handle.publish_feedback(MissionFeedback(
-                step=progress.step, steps=progress.steps, pab=progress.pab, along_mm=progress.along_m * 1000,
+                step=progress.step, steps=progress.steps, pab=progress.pab, option=progress.option,
+                distance_mm=progress.distance_mm, along_mm=progress.along_m * 1000,
                 time_left_s=progress.time_left_s, level=progress.level, state=progress.state,
                 waiting_for=progress.waiting_for))
 
@@ -199,8 +185,9 @@ class MissionExecutiveNode(object):
         with self._lock:
             running = self._running
         if running is None:
-            return MissionCommandResponse(ok=False, message='no mission is running')
-        ok, message = running[1].command(req.command)
+            ok, message, self._next_level = ex.between_missions(req.command, self._next_level)
+        else:
+            ok, message = running[1].command(req.command)
         return MissionCommandResponse(ok=ok, message=message)
 
     # --- where the robot is -------------------------------------------------

@@ -6,34 +6,23 @@ report's test mission), or ``rosrun pirate run_mission --route MAP FROM TO
 (pirate.supervisory.route_client). The mission is checked completely first (every
 error with its line; exit 2); ``--check`` prints the plan and exits
 without a ROS master. Exits 0 when every step succeeded, 1 otherwise.
-
-Why ``actionlib.ActionClient`` and not SimpleActionClient: the simple
-client ignores (and logs as an error, "Got a transition callback on a goal
-handle that we're not tracking") a status that reaches it before its
-``send_goal`` has returned the new handle - which a fast server causes.
-Here the callback holds its own handle, so nothing arrives untracked.
+Each goal is sent and waited for by pirate.supervisory.goal_client.
 """
 import argparse
 import os
 import sys
-import threading
 import time
 
 import actionlib
 import rospy
-from actionlib_msgs.msg import GoalStatus
 
 from pirate import names, paths
 from pirate.sequencer.guards import load_files
 from pirate.supervisory import route_client
+from pirate.supervisory.goal_client import GoalClient, wait_for_server
 from pirate.supervisory.mission import MissionError, MissionRunner, TracedPrimitive, load_mission, plan
 from pirate.msg import PirateAction, PirateGoal
 from pirate.srv import ServerStatus
-
-STATUS = {GoalStatus.SUCCEEDED: 'succeeded', GoalStatus.ABORTED: 'aborted',
-          GoalStatus.PREEMPTED: 'preempted', GoalStatus.REJECTED: 'rejected',
-          GoalStatus.RECALLED: 'recalled'}
-
 
 def default_mission():
     """The report's test mission shipped in config/missions/."""
@@ -46,10 +35,11 @@ class ActionGoalRunner(object):
     def __init__(self, timeout_s):
         self._client = actionlib.ActionClient(names.PIRATE_ACTION, PirateAction)
         self._timeout = timeout_s
+        self._goals = GoalClient(self._client, timeout_s, rospy.get_time, rospy.is_shutdown)
 
     def connect(self, wall_timeout=30.0):
         """Wait for the Pirate Server and for it to see the robot; the reason if not."""
-        if not self._client.wait_for_server(rospy.Duration(self._timeout)):
+        if not wait_for_server(self._client, wall_timeout):
             return 'no Pirate Server at %s' % names.PIRATE_ACTION
         status = rospy.ServiceProxy(names.SERVER_STATUS_SERVICE, ServerStatus)
         deadline = time.monotonic() + wall_timeout
@@ -64,29 +54,17 @@ class ActionGoalRunner(object):
         return 'the Pirate Server sees no robot state within %.0f s' % wall_timeout
 
     def __call__(self, step):
+        """(status, message, primitive trace) of ``step`` sent as a goal."""
         goal = PirateGoal(name=step.code, pipe_diameter=step.pipe_diameter, distance=step.distance,
                           speed=step.speed, option=step.option)
-        done = threading.Event()
-
-        def on_transition(handle):
-            if handle.get_comm_state() == actionlib.CommState.DONE:
-                done.set()
-        handle = self._client.send_goal(goal, transition_cb=on_transition)
-        deadline = rospy.get_time() + self._timeout
-        while not done.wait(0.1):   # wall poll; the goal's time limit is robot time
-            if rospy.is_shutdown():
-                handle.cancel()
-                return 'interrupted', 'run_mission was stopped; goal cancelled', []
-            if rospy.get_time() > deadline:
-                handle.cancel()
-                return 'timeout', 'no result within %.0f s; goal cancelled' % self._timeout, []
-        result = handle.get_result()
+        ending = self._goals.run(goal)
+        result = ending.result
         trace = [TracedPrimitive(p.name, p.guard, p.start, p.end, p.outcome)
                  for p in (result.primitives if result else [])]
-        message = result.message if result else ''
+        message = ending.message
         if result and result.server_state:
             message += ' [%s]' % result.server_state
-        return STATUS.get(handle.get_goal_status(), 'unknown'), message, trace
+        return ending.status, message, trace
 
 
 def _check(path):

@@ -21,6 +21,7 @@ Drive limit (config/sequencer.yaml) are passed in.
 """
 import collections
 
+from pirate.sequencer import goals
 from pirate.sequencer.junctions import STRAIGHT_CLAMP, required_clamp
 
 #: One junction of the map, as the route meets it.
@@ -159,10 +160,14 @@ class _Planner(object):
             self.at += part_mm / 1000.0
 
 
+#: The first line of a printed plan: map, waypoints, PAB count.
+PLAN_HEADER = 'plan on %s: %s (%d PABs)'
+ROUTE_JOIN = ' -> '
+
+
 def format_plan(route_plan):
     """The plan as lines for the operator, one per PAB goal."""
-    lines = ['plan on %s: %s (%d PABs)' % (route_plan.map_name, ' -> '.join(route_plan.waypoints),
-                                           len(route_plan.steps))]
+    lines = [PLAN_HEADER % (route_plan.map_name, ROUTE_JOIN.join(route_plan.waypoints), len(route_plan.steps))]
     for number, step in enumerate(route_plan.steps, 1):
         option = ' %s' % step.option if step.option else ''
         distance = ' %+.0f mm' % step.distance_mm if step.distance_mm else ''
@@ -170,3 +175,31 @@ def format_plan(route_plan):
                      % (number, step.pab, option, distance, step.pipe_diameter,
                         step.start_m * 1000, step.end_m * 1000, step.note))
     return lines
+
+
+def route_of(lines):
+    """(map name, [waypoints]) from a plan :func:`format_plan` printed (a
+    mission result's ``plan``, e.g. in a recording); None if it is not one."""
+    header = lines[0] if lines else ''
+    if not header.startswith('plan on ') or ': ' not in header:
+        return None
+    map_name, rest = header[len('plan on '):].rsplit(': ', 1)
+    return map_name, rest.rsplit(' (', 1)[0].split(ROUTE_JOIN)
+
+
+def check_runnable(route_plan, built=None):
+    """Raise :class:`PlanError` naming the first step the Pirate Server cannot
+    run (a PAB it does not have yet, or an option its goal cannot carry),
+    so that a mission through it is refused before the robot moves rather
+    than stopped at that junction. ``built(pab)``: default pirate.sequencer.goals.built."""
+    built = built or goals.built
+    for number, step in enumerate(route_plan.steps, 1):
+        where = 'step %d (%s%s%s)' % (number, step.pab, ' %s' % step.option if step.option else '',
+                                      ', %s' % step.junction.name if step.junction is not None else '')
+        if step.option and step.option not in goals.PAB_OPTIONS.get(step.pab, ()):
+            raise PlanError('%s: the Pirate Server\'s %s takes %s, not %s; the robot cannot take this route'
+                            % (where, step.pab, ' / '.join(goals.PAB_OPTIONS.get(step.pab, ('no option',))),
+                               step.option))
+        if not built(step.pab):
+            raise PlanError('%s: the Pirate Server cannot run %s yet; the robot cannot take this route'
+                            % (where, step.pab))

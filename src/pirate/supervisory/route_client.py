@@ -16,6 +16,7 @@ from actionlib_msgs.msg import GoalStatus
 from pirate import names
 from pirate.msg import MissionAction, MissionGoal
 from pirate.supervisory import planner
+from pirate.supervisory.goal_client import wait_for_server
 from pirate.supervisory.plan_cli import load_settings
 from pirate.world import network
 
@@ -39,9 +40,15 @@ def run_route(args, out=print):
     if args.check:
         out('\n'.join(planner.format_plan(route_plan)))
         return 0
+    if args.level != 'manual':
+        try:
+            planner.check_runnable(route_plan)
+        except planner.PlanError as refused:
+            print('run_mission: %s' % refused, file=sys.stderr)
+            return 2
     rospy.init_node('run_mission', anonymous=True)
     client = actionlib.SimpleActionClient(names.MISSION_ACTION, MissionAction)
-    if not client.wait_for_server(rospy.Duration(WAIT_FOR_SERVER_S)):
+    if not wait_for_server(client, WAIT_FOR_SERVER_S):
         print('run_mission: no mission executive at %s (roslaunch pirate mission_executive.launch)'
               % names.MISSION_ACTION, file=sys.stderr)
         return 2

@@ -5,6 +5,8 @@
 Without --guards, the guard lines come from config/guards_<D>.yaml for the
 pipe diameter D the run's goal named, when that file exists; a run without
 one is plotted without guard lines. Prints one line per primitive marker.
+A run of a mission (issue 11) also gets RUN_mission.png: the distance along
+the route against time, each PAB marked (pirate.viz.mission_plot).
 """
 import argparse
 import os
@@ -13,7 +15,7 @@ import sys
 import rospkg
 import yaml
 
-from pirate.viz import bag, plot
+from pirate.viz import bag, mission_plot, plot
 
 
 def _default_guards(diameter):
@@ -59,9 +61,15 @@ def main(argv=None):
     output = args.output or os.path.splitext(args.bag)[0] + '.png'
     try:
         run, _, config_path = plot_bag(args.bag, output, args.guards, args.title)
+        mission = mission_plot.read_mission(args.bag)
     except (OSError, ValueError, yaml.YAMLError, bag.BagError) as error:
         sys.exit('plot_run: %s' % error)
     for i, (t, primitive) in enumerate(run.markers, 1):
         print('t%d %7.2f s  %s' % (i, t, primitive))
     print('wrote %s (%d samples, %d primitives, guards: %s)'
           % (output, len(run.times), len(run.markers), config_path or 'none'))
+    if mission is not None:
+        mission_output = os.path.splitext(output)[0] + '_mission.png'
+        mission_plot.plot_mission(mission, mission_output)
+        print('wrote %s (%s: %d PABs, %d estimates along the route)'
+              % (mission_output, mission.title, len(mission.markers), len(mission.times)))

@@ -1,0 +1,34 @@
+"""Where the twin says the robot is along a pipe map: for tests and
+bench/mission_sweep only, to judge the executive's estimate. Never used by
+the executive (the real robot has no ground truth).
+
+The robot's middle is the midpoint of the rotational module's two bodies
+(the point a world's ``start`` and the planner's positions refer to),
+projected on the path axis.
+"""
+from pirate.sim.twin_robot import ROOT, ROTATIONAL_FRONT
+
+PROJECT_STEP_M = 0.005
+FINE_STEPS = 50
+
+
+def middle(truth):
+    """World position (m) of the robot's middle in a twin ground truth dict."""
+    a, b = truth['poses'][ROOT][0], truth['poses'][ROTATIONAL_FRONT][0]
+    return tuple((x + y) / 2.0 for x, y in zip(a, b))
+
+
+def along_m(pipe_map, position):
+    """The path position (m) nearest to ``position`` (world, m): every 5 mm,
+    then to 0.1 mm around the best."""
+    def dist(along):
+        origin = pipe_map.locate(along)[1].origin
+        return sum((a - b) ** 2 for a, b in zip(origin, position))
+    coarse = min((i * PROJECT_STEP_M for i in range(int(pipe_map.length / PROJECT_STEP_M) + 1)), key=dist)
+    fine = [coarse + (i - FINE_STEPS) * PROJECT_STEP_M / FINE_STEPS for i in range(2 * FINE_STEPS + 1)]
+    return min((a for a in fine if 0.0 <= a <= pipe_map.length), key=dist)
+
+
+def robot_along_m(pipe_map, truth):
+    """Where the twin's robot middle is along ``pipe_map``, m."""
+    return along_m(pipe_map, middle(truth))

@@ -1,0 +1,84 @@
+"""The mission plot (issue 11 point 6) from a recorded run: distance along
+the route against time, each PAB marked, the pause and the end.
+
+test/data/missions/straight_90_pause.bag was recorded by launch/record.launch
+with the twin (straight_90, rate 3), pirate_manager, mission_executive and
+``run_mission --route straight_90 pit target pit --speed 50``, paused by
+the command service during the first drive and resumed; the recording was
+cut to its mission and goal topics and every 25th /pirate/state."""
+import os
+
+import pytest
+
+rosbag = pytest.importorskip('rosbag', reason='rosbag missing (Debian python3-rosbag)')
+import rospy  # noqa: E402
+from std_msgs.msg import Float64  # noqa: E402
+
+from pirate import names  # noqa: E402
+from pirate.supervisory import planner  # noqa: E402
+from pirate.viz import mission_plot, plot_cli  # noqa: E402
+
+HERE = os.path.dirname(__file__)
+RECORDED = os.path.join(HERE, '..', 'data', 'missions', 'straight_90_pause.bag')
+RESULTS = os.path.join(HERE, '..', '..', 'test-results')
+
+
+@pytest.fixture(scope='module')
+def run():
+    return mission_plot.read_mission(RECORDED)
+
+
+def test_every_pab_sent_is_marked_in_order_with_its_distance(run):
+    assert [label for _, label in run.markers] == [
+        'CLAMP_STRAIGHT', 'DRIVE +500 mm', 'DRIVE +150 mm', 'DRIVE -504 mm', 'HOME']
+    times = [t for t, _ in run.markers]
+    assert times == sorted(times) and times[0] == pytest.approx(0.0, abs=0.5)
+
+
+def test_the_pause_and_the_end_are_events_and_the_route_its_levels(run):
+    assert [text.split(':')[0] for _, text in run.events] == ['paused at step 2 (DRIVE)', 'mission succeeded']
+    assert run.points == [('pit', 400.0), ('target', 900.0)]
+    assert run.title == 'Mission straight_90: pit -> target -> pit (succeeded)'
+
+
+def test_the_estimate_goes_to_the_target_holds_while_paused_and_comes_back(run):
+    def along_at(t):
+        return min(zip(run.times, run.along_mm), key=lambda ta: abs(ta[0] - t))[1]
+    pause_t = run.events[0][0]
+    resume_t = run.markers[2][0]
+    assert along_at(run.markers[1][0]) == pytest.approx(400, abs=5)          # the first drive starts at pit
+    assert max(run.along_mm) == pytest.approx(900, abs=20)                   # reaches the target
+    assert along_at(pause_t + 1) == pytest.approx(along_at(resume_t - 1), abs=2)   # held while paused
+    assert along_at(run.markers[4][0]) == pytest.approx(400, abs=20)         # back at pit for HOME
+
+
+def test_plot_run_writes_the_mission_plot_beside_the_run_plot(tmp_path, capsys):
+    os.makedirs(RESULTS, exist_ok=True)
+    png = os.path.join(RESULTS, 'plot_run_mission_straight_90.png')
+    plot_cli.main([RECORDED, '-o', png])
+    out = capsys.readouterr().out
+    mission_png = png[:-len('.png')] + '_mission.png'
+    assert 'wrote %s (Mission straight_90: pit -> target -> pit (succeeded): 5 PABs' % mission_png in out
+    with open(mission_png, 'rb') as f:
+        assert f.read(4) == b'\x89PNG'
+
+
+def test_the_panel_draws_the_estimate_and_the_points(run):
+    drawn = mission_plot.panel(run)
+    assert drawn.series == [('estimate', run.times, run.along_mm)]
+    assert drawn.references == [('pit', 400.0), ('target', 900.0)]
+
+
+def test_a_run_without_a_mission_has_no_mission_plot(tmp_path):
+    path = str(tmp_path / 'no_mission.bag')
+    with rosbag.Bag(path, 'w') as out:
+        out.write(names.ROBOT_STATE_TOPIC + '_other', Float64(data=1.0), rospy.Time.from_sec(1.0))
+    assert mission_plot.read_mission(path) is None
+
+
+@pytest.mark.parametrize('lines, route', [
+    (['plan on straight_90: pit -> target -> pit (4 PABs)', '  1. ...'], ('straight_90', ['pit', 'target', 'pit'])),
+    (['plan on /a/b: c.yaml: x -> y (2 PABs)'], ('/a/b: c.yaml', ['x', 'y'])),
+    ([], None), (['mission refused'], None)])
+def test_the_route_is_read_back_from_a_printed_plan(lines, route):
+    assert planner.route_of(lines) == route
