@@ -9,11 +9,11 @@ from pirate.sequencer.pabs import PABS
 #: PAB name -> goal code (Pirate.action's name constants).
 CODES = {row[0]: code for code, row in PABS.items()}
 #: Pirate.action's option constants.
-OPTIONS = {'NONE': 0, 'LEFT': 1, 'RIGHT': 2, 'STRAIGHT': 3}
+OPTIONS = {'NONE': 0, 'LEFT': 1, 'RIGHT': 2, 'STRAIGHT': 3, 'UP': 4, 'DOWN': 5}
 OPTION_NAMES = {code: name for name, code in OPTIONS.items()}
 #: The options each PAB needs (one of them); the others take none.
 PAB_OPTIONS = {'CLAMP_SIDEWAYS': ('LEFT', 'RIGHT'), 'T_JOINT': ('LEFT', 'RIGHT', 'STRAIGHT'),
-               'MITRE_BEND': ('LEFT', 'RIGHT')}
+               'MITRE_BEND': ('LEFT', 'RIGHT', 'UP', 'DOWN')}
 #: Goal fields a PAB takes besides its pipe diameter and option.
 PAB_FIELDS = {'DRIVE': ('distance', 'speed')}
 

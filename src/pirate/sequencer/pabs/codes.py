@@ -4,4 +4,4 @@
 the generated message.
 """
 CLAMP_STRAIGHT, CLAMP_SIDEWAYS, T_JOINT, MITRE_BEND, DRIVE, HOME = range(6)
-NONE, LEFT, RIGHT, STRAIGHT = range(4)
+NONE, LEFT, RIGHT, STRAIGHT, UP, DOWN = range(6)
