@@ -18,6 +18,10 @@ PAB_OPTIONS = {'CLAMP_SIDEWAYS': ('LEFT', 'RIGHT'), 'T_JOINT': ('LEFT', 'RIGHT',
 PAB_FIELDS = {'DRIVE': ('distance', 'speed')}
 
 
-def built(pab):
-    """True when the Pirate Server can run PAB ``pab`` (a name of :data:`CODES`)."""
-    return PABS[CODES[pab]][1] is not None
+def built(pab, option=None):
+    """True when the Pirate Server can run PAB ``pab`` (a name of :data:`CODES`),
+    with ``option`` (a name of :data:`OPTIONS`) when one is given."""
+    pab_class = PABS[CODES[pab]][1]
+    if pab_class is None:
+        return False
+    return option is None or pab_class.takes(CODES[pab], OPTIONS[option])
