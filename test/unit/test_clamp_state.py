@@ -157,3 +157,17 @@ def test_server_state_after_each_outcome_is_the_sensed_one(monkeypatch, status, 
     assert server.reserve(goal) is None
     assert server.run(goal).status == status
     assert server.status() == expected
+
+
+#: Twin, 90 mm, Clamp Sideways RIGHT ended (1 s later): on the wall short of
+#: the upright guard, because lying on a side the V spans the chord.
+SIDEWAYS_90 = (angles(bend_i=-0.621, bend_ii=0.348, bend_iii=0.350, bend_iv=-0.704),
+               dict(bend_i=241.0, bend_ii=-5.0, bend_iii=5.0, bend_iv=238.0))
+
+
+@pytest.mark.parametrize('roll, state', [(0.011, (cs.FULL, cs.FULL)), (math.pi - 0.02, (cs.FULL, cs.FULL)),
+                                         (math.pi / 2, (cs.PARTLY, cs.CUSTOM))])   # upright: rear past Table 5.3
+def test_a_clamp_on_a_side_is_full_only_lying_on_a_side(roll, state):
+    pose, efforts = SIDEWAYS_90
+    assert cs.classify(BOOK.for_diameter(90), pose, efforts, roll) == state
+    assert cs.classify(BOOK.for_diameter(90), pose, {}, roll) == (cs.PARTLY, cs.PARTLY)   # short of the wall

@@ -1,19 +1,22 @@
 """Clamp Sideways in the physics twin (issue 10.2), 90 and 110 mm.
 
 The robot lying on the target side clamps there with the report's simple
-sequence (move front, clamp rear, clamp front), ends pressing the wall with
+sequence (move front, clamp rear, clamp front; the full clamp judged by the
+sideways guards derived from the pipe's chord, config/guards_<mm>.yaml),
+followed by Table 6.2's re-adjust pass when the clamps roll it out of the
++-0.05 rad straight band (on the round shells a clamp on a side rolls the
+twin by 0.04-0.06 rad, notes/issue-9.md), and ends pressing the wall with
 both V's (the apex wheels in contact, ground truth read by the test only)
-at the target roll. Starts away from the target need the re-adjusting
-rotations, which the twin does not yet converge for Clamp Straight either
-(notes/issue-10.md); they are covered on the kinematic robot.
+at the target roll; the server then says Idle Clamped, so Drive is accepted.
+Starts away from the target are covered on the kinematic robot.
 """
 import math
 
 import pytest
 
 from pirate.sim.harness import SimHarness
-from test_sequencer_sim import CLAMP_SIMPLE, run_bounded
-from test_sim_twin_sequencer import robot_wait
+from test_sequencer_sim import run_bounded
+from test_sim_twin_sequencer import re_adjust_passes, robot_wait
 
 SPEEDUP = 10.0
 CLAMP_SIDEWAYS, LEFT, RIGHT = 1, 1, 2
@@ -26,7 +29,7 @@ def test_simple_clamp_sideways_on_the_twin(mm, option, target):
     with SimHarness(speedup=SPEEDUP, world='straight_%d' % mm, orientation=target) as h:
         reason, outcome = run_bounded(h, h.goal(CLAMP_SIDEWAYS, pipe_diameter=mm, option=option))
         assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
-        assert h.prims.executed == CLAMP_SIMPLE
+        assert re_adjust_passes(h.prims.executed) in (0, 1), h.prims.executed
         assert {fb.server_state for fb in h.feedback if fb.pab_state} == {'Clamp Sideways'}   # Fig 4.2
         robot_wait(h, 2.0)
         truth = h.ground_truth()

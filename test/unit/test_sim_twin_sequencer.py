@@ -38,6 +38,16 @@ def assert_clamped_straight(h):
     assert {23, 26} <= set(truth['wheel_contacts'])
 
 
+def re_adjust_passes(executed):
+    """How many times Table 6.2's re-adjust pass follows Table 6.1's simple
+    clamp in ``executed`` (primitive names), or None when it is not that."""
+    re_adjust = CLAMP_NOMINAL[len(CLAMP_SIMPLE):]
+    passes, rest = divmod(len(executed) - len(CLAMP_SIMPLE), len(re_adjust))
+    if passes < 0 or rest or executed != CLAMP_SIMPLE + re_adjust * passes:
+        return None
+    return passes
+
+
 @pytest.mark.parametrize('world', ['straight_90', 'straight_110'])
 def test_simple_clamp_straight_on_the_twin(world):
     with SimHarness(speedup=SPEEDUP, world=world, orientation=math.pi / 2) as h:
@@ -55,9 +65,7 @@ def test_nominal_re_adjust_on_the_twin():
     with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=1.45) as h:
         reason, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT))
         assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
-        executed, re_adjust = h.prims.executed, CLAMP_NOMINAL[len(CLAMP_SIMPLE):]
-        passes, rest = divmod(len(executed) - len(CLAMP_SIMPLE), len(re_adjust))
-        assert passes >= 1 and rest == 0 and executed == CLAMP_SIMPLE + re_adjust * passes, executed
+        assert re_adjust_passes(h.prims.executed) >= 1, h.prims.executed
         assert_clamped_straight(h)
 
 

@@ -11,6 +11,12 @@ Per part (front = Bend I/II, rear = Bend IV/III, SPEC 2) the classes are:
   bend's spring presses toward the wall (effort, signed like the clamp
   setpoint of Table 5.2, at least ``spring_clamp_mnm``);
 - ``custom``: the same with a custom clamp guard (Table 5.3) instead;
+- lying on a side (the rear's IMU roll within the nominal band around 0 or
+  pi, Fig 4.7) the V spans the pipe's chord at the axis height, not its
+  diameter, and meets the walls short of the full guard: there ``full``
+  uses the ``clamp_sideways`` row (derived from that chord, see
+  config/guards_<mm>.yaml), so a Clamp Sideways reads as clamped and the
+  server accepts Drive after it;
 - ``free``: both bends back inside the full unclamp guard AND neither
   spring pushes in the clamping direction (``spring_contact_mnm``);
 - ``partly clamped``: anything else - bends between open and clamped, bends
@@ -38,6 +44,7 @@ the spring threshold is that file's ``clamp_state`` row, so each pipe
 diameter carries its own numbers as data.
 """
 import collections
+import math
 
 FREE, PARTLY, CUSTOM, FULL = 'free', 'partly clamped', 'custom', 'full'
 PARTS = ('front', 'rear')
@@ -48,6 +55,11 @@ CUSTOM_ROWS = {'front': ('clamp_front_custom_first', 'clamp_front_custom'),
 IDLE_CLAMPED = 'Idle Clamped'
 IDLE_UNCLAMPED = 'Idle Unclamped'
 IDLE_PARTLY = 'Idle Partly Clamped'
+
+#: Target orientations (rad, Fig 4.7) where the robot lies on a side.
+SIDES_RAD = (0.0, math.pi)
+#: Suffix of a guard row for the robot lying on a side (config/guards_<mm>.yaml).
+SIDEWAYS = '_sideways'
 
 #: The clamp state of the whole robot: one class per part.
 ClampState = collections.namedtuple('ClampState', 'front rear')
@@ -63,9 +75,31 @@ def spring_clamp_mnm(guards):
     return float(guards.row('clamp_state')['spring_clamp_mnm'])
 
 
-def classify_part(guards, part, angles, efforts):
-    """Class of ``part`` ('front'/'rear') from joint ``angles`` (rad) and ``efforts`` (mNm)."""
-    if clamped(guards, guards.pair('clamp', part), angles, efforts):
+def on_side(guards, orientation):
+    """True when the rear's roll ``orientation`` (rad) lies in the nominal band around a side."""
+    if orientation is None:
+        return False
+    low, high = guards.region('nominal')
+    half = (high - low) / 2.0
+    return any(abs(math.remainder(orientation - side, 2 * math.pi)) <= half for side in SIDES_RAD)
+
+
+def row_at(guards, row, orientation=None):
+    """Guard ``row`` for a robot at roll ``orientation`` (rad): ``<row>_sideways``
+    when it lies on a side and the diameter has that row, else ``row``."""
+    sideways = row + SIDEWAYS
+    return sideways if on_side(guards, orientation) and guards.has(sideways) else row
+
+
+def full_row(guards, orientation=None):
+    """The guard row of a full clamp at ``orientation`` (rad): ``clamp``, or ``clamp_sideways`` on a side."""
+    return row_at(guards, 'clamp', orientation)
+
+
+def classify_part(guards, part, angles, efforts, orientation=None):
+    """Class of ``part`` ('front'/'rear') from joint ``angles`` (rad), ``efforts`` (mNm)
+    and the rear's roll ``orientation`` (rad; None: upright guards)."""
+    if clamped(guards, guards.pair(full_row(guards, orientation), part), angles, efforts):
         return FULL
     for row in CUSTOM_ROWS[part]:
         if guards.has(row) and clamped(guards, guards.pair(row, part), angles, efforts):
@@ -92,14 +126,14 @@ def _pushes(bend, efforts, threshold_mnm):
     return (efforts or {}).get(bend.joint, 0.0) * sign >= threshold_mnm
 
 
-def classify(guards, angles, efforts):
+def classify(guards, angles, efforts, orientation=None):
     """:data:`ClampState` of both parts."""
-    return ClampState(*(classify_part(guards, part, angles, efforts) for part in PARTS))
+    return ClampState(*(classify_part(guards, part, angles, efforts, orientation) for part in PARTS))
 
 
 def sensed(guards, view):
     """:data:`ClampState` of the robot in ``view`` (a :class:`pirate.state.feed.RobotView`)."""
-    return classify(guards, view.angles, view.efforts)
+    return classify(guards, view.angles, view.efforts, view.orientation)
 
 
 def idle_state(clamp):

@@ -17,13 +17,22 @@ from pirate.robot import safety, units
 from pirate.robot.hold import safe_hold
 from pirate.sequencer import clamp_state
 
+#: Suffix of a guard row for the robot lying on a side (config/guards_<mm>.yaml).
+SIDEWAYS = clamp_state.SIDEWAYS
 
 class Refused(ValueError):
     """A primitive asked for something outside the robot's limits."""
 
 
+def report_kind(kind):
+    """The report's primitive for guard row ``kind``: a ``*_sideways`` row is
+    the same primitive with the guards of a robot lying on a side."""
+    return kind[:-len(SIDEWAYS)] if kind.endswith(SIDEWAYS) else kind
+
+
 def clamp_name(kind, part):
     """Primitive name as the report's tables write it, e.g. 'clamp rear custom'."""
+    kind = report_kind(kind)
     if kind == 'clamp':
         return 'clamp %s' % part
     return 'clamp %s custom%s' % (part, ' first' if kind.endswith('_first') else '')
@@ -153,7 +162,7 @@ class MotionPrimitives(object):
         else:
             guard, text = (lambda v: v.angles['front_tilt'] <= move.guard), 'front_tilt <= %.3f' % move.guard
         try:
-            self.wait_for(kind.replace('_', ' '), guard, text)
+            self.wait_for(report_kind(kind).replace('_', ' '), guard, text)
         finally:
             with self.control.wire_lock:    # 0 in PWM: what the hold writes too
                 self.setpoint.set('front_tilt', 0)

@@ -7,6 +7,11 @@ built the upright case; nothing in its table depends on which way is the
 target: "straight" and "nominal" are the regions of Table 5.4 measured
 around the target (config/sequencer.yaml gives them around pi/2), and eqs
 5.1 and 5.2 turn toward the target instead of toward pi/2 (issue 10.2).
+Only the guards of the full clamp follow the target: lying on a side the
+V spans the pipe's chord at the axis height, so it presses the walls short
+of Table 5.2's -0.77 rad; a full clamp there is judged by the
+``clamp_sideways`` guards (derived from that chord) and the outer spring on
+the wall (:func:`pirate.sequencer.clamp_state.full_row`).
 
 The transition table below is Table D.1 reconciled with the step lists the
 report observed (Tables 6.1-6.3), because the extracted Table D.1 is damaged
@@ -187,8 +192,8 @@ class Clamp(Pab):
         return {
             CHANGE_MODES: self._change_modes,
             MOVING_FRONT: self._move_front,
-            CLAMPING_REAR: lambda ctx: self._clamp(ctx, 'rear', 'clamp', FULL),
-            CLAMPING_FRONT: lambda ctx: self._clamp(ctx, 'front', 'clamp', FULL),
+            CLAMPING_REAR: lambda ctx: self._clamp(ctx, 'rear', self._full_row(ctx), FULL),
+            CLAMPING_FRONT: lambda ctx: self._clamp(ctx, 'front', self._full_row(ctx), FULL),
             CLAMPING_REAR_CUSTOM: lambda ctx: self._clamp(ctx, 'rear', 'clamp_rear_custom', CUSTOM),
             CLAMPING_FRONT_CUSTOM: self._clamp_front_custom,
             UNCLAMPING_REAR: lambda ctx: self._unclamp(ctx, 'rear'),
@@ -204,6 +209,19 @@ class Clamp(Pab):
                      aligned=abs(view.angles['rotation']) <= ctx.guards.align_tolerance,
                      front=self.clamp['front'], rear=self.clamp['rear'], lift=self.lift,
                      limited=self.limited)
+
+    def _full_row(self, ctx):
+        """Guards of a full clamp at the target: upright Table 5.2's, on a side
+        the chord's (the V meets the walls short of -0.77 rad there,
+        config/guards_<mm>.yaml ``clamp_sideways``); the same rule as the
+        clamp state the server reads afterwards."""
+        return clamp_state.full_row(ctx.guards, self.target)
+
+    def _lift_row(self, ctx):
+        """Guards of the nominal front lift at the target: on a side the front
+        swings toward a wall, not up (``move_front_sideways``: lifted to
+        0.4 rad in 90 mm it pushed the wall and rolled the twin 0.07 rad)."""
+        return clamp_state.row_at(ctx.guards, 'move_front', self.target)
 
     # --- actions ----------------------------------------------------------
     def _change_modes(self, ctx):
@@ -222,14 +240,14 @@ class Clamp(Pab):
             if self.clamp[part] == NONE:
                 for bend in CLAMP_BENDS[part]:
                     ctx.prims.change_control_mode(bend, 'torque')
-        if view.angles['front_tilt'] >= ctx.guards.move('move_front').guard:
+        if view.angles['front_tilt'] >= ctx.guards.move(self._lift_row(ctx)).guard:
             self.lift = 2
         ctx.prims.change_control_mode('rotation', 'position')
         ctx.prims.change_control_mode('front_tilt', 'pwm')
 
     def _move_front(self, ctx):
         if self.nominal_start:
-            ctx.prims.move_front('move_front')
+            ctx.prims.move_front(self._lift_row(ctx))
             self.lift = 2
         elif self.lift == 0:
             ctx.prims.move_front('move_front_first')

@@ -1,0 +1,51 @@
+"""The sideways guard rows of config/guards_<mm>.yaml derived again from the
+geometry (issue 10.2/10.3: derived, not measured; the report gives none).
+
+Lying on a side the robot rests on its round shells (radius r), its axis r
+above the floor, R - r below the pipe's axis, where the horizontal chord is
+2 sqrt(R^2 - (R - r)^2). The V lies in that horizontal plane and spans the
+chord when sin(beta) = (chord - D_w) / l (eq 2.1 with the chord for the
+diameter): the wall angles are outer -2 beta, inner beta; the guards stop
+0.05 rad short of them. The front tilt swings the front module (length l)
+toward a wall; its tip, r off its axis, meets the wall at half the chord:
+sin(theta) = (chord / 2 - r) / l; the lift guard stops 0.03 rad short.
+"""
+import math
+
+import pytest
+
+from pirate.sequencer import clamp_state as cs
+from pirate.sequencer.guards import GuardBook, load_files
+
+L_M, WHEEL_D_M = 0.09, 0.046      # report 2.4.1.1: l, D_w
+SHELL_R_M = 0.020                 # config/twin.yaml geometry.body_radius_m (an estimate)
+BOOK = GuardBook(*load_files())
+
+
+def chord_m(diameter_m):
+    radius = diameter_m / 2
+    return 2 * math.sqrt(radius ** 2 - (radius - SHELL_R_M) ** 2)
+
+
+@pytest.mark.parametrize('mm', [90, 110])
+def test_sideways_clamp_guards_are_the_chord_s_wall_angles_less_the_margin(mm):
+    beta = math.asin((chord_m(mm / 1000.0) - WHEEL_D_M) / L_M)
+    pair = BOOK.for_diameter(mm).pair('clamp_sideways', 'rear')
+    assert pair.outer.guard == pytest.approx(-2 * beta + 0.05, abs=0.01)
+    assert pair.inner.guard == pytest.approx(beta - 0.05, abs=0.01)
+    upright = BOOK.for_diameter(mm).pair('clamp', 'rear')      # on a side the V closes less than upright
+    assert upright.outer.guard < pair.outer.guard and upright.inner.guard > pair.inner.guard
+
+
+@pytest.mark.parametrize('mm', [90, 110])
+def test_sideways_lift_guard_keeps_the_front_module_off_the_wall(mm):
+    theta = math.asin((chord_m(mm / 1000.0) / 2 - SHELL_R_M) / L_M)
+    guard = BOOK.for_diameter(mm).move('move_front_sideways').guard
+    assert guard == pytest.approx(theta - 0.03, abs=0.01)
+
+
+@pytest.mark.parametrize('roll, row', [(0.0, 'clamp_sideways'), (math.pi, 'clamp_sideways'),
+                                       (-0.15, 'clamp_sideways'), (2 * math.pi - 0.1, 'clamp_sideways'),
+                                       (0.3, 'clamp'), (math.pi / 2, 'clamp'), (None, 'clamp')])
+def test_the_full_clamp_row_follows_the_roll(roll, row):
+    assert cs.full_row(BOOK.for_diameter(90), roll) == row
