@@ -2,7 +2,7 @@
 
 The recordings are the physics twin's Small State as the Pirate State node
 turns it into SI units (RobotView), one per Mega cycle, of a robot clamped
-straight in 90 mm and driven at 50 mm/s by a Drive goal (recorded with
+straight (or sideways) in 90 mm and driven at 50 mm/s by a Drive goal (recorded with
 SimHarness, world files of config/worlds/; the command is in
 notes/issue-10.md): (robot time s, odometry mm, Bend I angle rad, Bend I
 spring mNm). Ground truth was read only to say what each recording is.
@@ -90,6 +90,26 @@ STRAIGHT = (
     (24.7, 390.1, -0.999, 244.1), (24.8, 392.0, -0.999, 244.1), (24.9, 392.0, -0.997, 247.1), (25.0, 392.0, -0.997, 247.1),
 )
 
+#: straight_90, clamped sideways LEFT (pi, twin3's sideways clamp): no junction;
+#: Bend I creeps closed while driving, more than close_rad over the drive.
+SIDEWAYS_LEFT = (
+    (28.2, 0.0, -0.601, 237.0), (28.3, 4.5, -0.604, 233.0), (28.4, 9.0, -0.607, 231.0), (28.5, 13.5, -0.611, 230.0), (28.6, 18.1, -0.614, 230.0),
+    (28.7, 22.6, -0.617, 230.0), (28.8, 27.1, -0.620, 231.0), (28.9, 31.6, -0.621, 231.0), (29.0, 36.2, -0.624, 231.0), (29.1, 40.8, -0.627, 232.0),
+    (29.2, 45.2, -0.629, 232.0), (29.3, 49.8, -0.632, 232.0), (29.4, 54.3, -0.634, 232.0), (29.5, 58.8, -0.637, 232.0), (29.6, 63.3, -0.638, 232.0),
+    (29.7, 67.9, -0.641, 232.0), (29.8, 72.4, -0.643, 233.0), (29.9, 76.9, -0.646, 232.0), (30.0, 81.4, -0.647, 234.0), (30.1, 86.0, -0.649, 234.0),
+    (30.2, 90.6, -0.649, 235.0), (30.3, 95.0, -0.650, 237.0), (30.4, 99.6, -0.652, 236.0), (30.5, 104.1, -0.652, 238.0), (30.6, 108.6, -0.653, 236.0),
+    (30.7, 113.1, -0.653, 239.0), (30.8, 117.7, -0.655, 237.0), (30.9, 122.2, -0.655, 238.0), (31.0, 126.7, -0.657, 239.0), (31.1, 131.2, -0.657, 238.0),
+    (31.2, 135.8, -0.658, 237.0), (31.3, 140.4, -0.658, 239.0), (31.4, 144.8, -0.658, 239.0), (31.5, 149.4, -0.660, 240.1), (31.6, 153.9, -0.660, 239.0),
+    (31.7, 158.4, -0.661, 238.0), (31.8, 162.9, -0.661, 239.0), (31.9, 167.5, -0.661, 240.1), (32.0, 172.0, -0.661, 240.1), (32.1, 176.5, -0.661, 241.1),
+    (32.2, 181.0, -0.663, 238.0), (32.3, 185.6, -0.663, 239.0), (32.4, 190.2, -0.663, 240.1), (32.5, 194.6, -0.663, 241.1), (32.6, 199.2, -0.664, 238.0),
+    (32.7, 203.7, -0.664, 240.1), (32.8, 208.2, -0.664, 241.1), (32.9, 212.7, -0.664, 239.0), (33.0, 217.3, -0.664, 240.1), (33.1, 221.8, -0.664, 240.1),
+    (33.2, 226.3, -0.666, 239.0), (33.3, 230.8, -0.666, 241.1), (33.4, 235.4, -0.666, 239.0), (33.5, 240.0, -0.666, 241.1), (33.6, 244.4, -0.667, 239.0),
+    (33.7, 249.0, -0.666, 241.1), (33.8, 253.5, -0.667, 240.1), (33.9, 258.0, -0.667, 240.1), (34.0, 262.5, -0.667, 240.1), (34.1, 267.1, -0.667, 241.1),
+    (34.2, 271.6, -0.667, 239.0), (34.3, 276.1, -0.667, 240.1), (34.4, 280.6, -0.669, 240.1), (34.5, 285.2, -0.669, 240.1), (34.6, 289.8, -0.669, 241.1),
+    (34.7, 291.7, -0.670, 237.0), (34.8, 293.5, -0.670, 239.0), (34.9, 295.4, -0.670, 240.1), (35.0, 297.3, -0.670, 240.1), (35.1, 299.1, -0.670, 241.1),
+    (35.2, 301.0, -0.670, 241.1), (35.3, 301.0, -0.670, 241.1),
+)
+
 
 def views(rows):
     return [RobotView({'bend_i': angle}, 1.571, odometry, 46.0, stamp, {'bend_i': spring})
@@ -113,9 +133,18 @@ def test_the_open_side_of_a_t_joint_is_sensed_where_the_front_v_loses_its_wall()
     assert 'spring' in sensed.why and 'closed' in sensed.why
 
 
-@pytest.mark.parametrize('rows', [STRAIGHT, BEND_DOWN], ids=['straight pipe', 'jammed before a mitre bend'])
+@pytest.mark.parametrize('rows', [STRAIGHT, BEND_DOWN, SIDEWAYS_LEFT],
+                         ids=['straight pipe', 'jammed before a mitre bend', 'lying on its left side'])
 def test_no_junction_while_the_front_v_keeps_its_wall(rows):
     assert first_sensed(rows) == (None, None)
+
+
+def test_a_slow_creep_of_the_v_is_not_a_lost_wall():
+    """On a side the V crept closed by more than close_rad over the drive: only
+    closing within close_window_mm of odometry counts."""
+    close_rad = float(GUARDS.row('junction')['close_rad'])
+    assert SIDEWAYS_LEFT[0][2] - SIDEWAYS_LEFT[-1][2] > close_rad
+    assert first_sensed(SIDEWAYS_LEFT) == (None, None)
 
 
 def test_one_noisy_state_is_not_a_junction():
