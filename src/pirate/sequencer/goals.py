@@ -8,6 +8,7 @@ from pirate.sequencer.pabs import PABS
 
 #: PAB name -> goal code (Pirate.action's name constants).
 CODES = {row[0]: code for code, row in PABS.items()}
+CODE_NAMES = {code: name for name, code in CODES.items()}
 #: Pirate.action's option constants.
 OPTIONS = {'NONE': 0, 'LEFT': 1, 'RIGHT': 2, 'STRAIGHT': 3, 'UP': 4, 'DOWN': 5}
 OPTION_NAMES = {code: name for name, code in OPTIONS.items()}
