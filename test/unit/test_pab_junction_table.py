@@ -19,7 +19,7 @@ from pirate.sequencer.pabs import junction as jn
 from pirate.sequencer.pabs.base import END, PabFailed
 
 BOOK = GuardBook(*load_files())
-ALL_FACTS = [jn.Facts(*values) for values in itertools.product((True, False), repeat=3)]
+ALL_FACTS = [jn.Facts(*values) for values in itertools.product((True, False), repeat=4)]
 
 #: What each state's action guarantees about the facts read right after it.
 POSTCONDITION = {
@@ -32,6 +32,7 @@ POSTCONDITION = {
     jn.UNCLAMPING_REAR: lambda f: f.found and f.front and not f.rear,
     jn.CROSSING_REAR: lambda f: f.found and f.front and not f.rear,
     jn.CLAMPING_REAR: lambda f: f.found and f.front and f.rear,
+    jn.STRAIGHTENING: lambda f: f.found and f.front and f.rear and f.straight,
 }
 
 
@@ -53,12 +54,12 @@ def test_at_most_one_transition_and_one_where_the_action_succeeded(state):
 
 def test_a_clamp_that_does_not_hold_ends_the_pab():
     with pytest.raises(PabFailed):
-        jn.MACHINE.next(jn.CLAMPING_REAR, jn.Facts(found=True, front=True, rear=False))
+        jn.MACHINE.next(jn.CLAMPING_REAR, jn.Facts(found=True, front=True, rear=False, straight=True))
 
 
 def test_straight_through_a_t_joint_walks_the_reports_steps():
     """Report 4.7.4: detect, unclamp front, re-clamp front, the rear the same way."""
-    facts = jn.Facts(found=False, front=True, rear=True)
+    facts = jn.Facts(found=False, front=True, rear=True, straight=True)
     after = {jn.SEARCHING: dict(found=True), jn.UNCLAMPING_FRONT: dict(front=False),
              jn.CLAMPING_FRONT: dict(front=True), jn.UNCLAMPING_REAR: dict(rear=False),
              jn.CLAMPING_REAR: dict(rear=True)}
@@ -69,6 +70,12 @@ def test_straight_through_a_t_joint_walks_the_reports_steps():
         state = jn.MACHINE.next(state, facts)
     assert walked == [jn.CHANGE_MODES, jn.SEARCHING, jn.STOPPING, jn.UNCLAMPING_FRONT, jn.CROSSING_FRONT,
                       jn.CLAMPING_FRONT, jn.UNCLAMPING_REAR, jn.CROSSING_REAR, jn.CLAMPING_REAR]
+
+
+def test_clamped_past_the_junction_but_rolled_out_of_straight_re_adjusts():
+    rolled = jn.Facts(found=True, front=True, rear=True, straight=False)
+    assert jn.MACHINE.next(jn.CLAMPING_REAR, rolled) == jn.STRAIGHTENING
+    assert jn.MACHINE.next(jn.STRAIGHTENING, rolled._replace(straight=True)) == END
 
 
 # --- refusals ------------------------------------------------------------------

@@ -3,7 +3,8 @@
 Clamped straight before a T-joint whose open side is above the robot
 (config/worlds/tee_run_up_90.yaml), T_JOINT STRAIGHT senses the hole from
 the front V, crosses it one part at a time and ends clamped straight with
-the whole robot past the hole (ground truth, read by the test only). In a
+both V's apex wheels on the wall past the hole (ground truth, read by the
+test only). In a
 straight pipe the same goal looks its distance, aborts with
 junction_missing and leaves the robot clamped with the wheels stopped.
 """
@@ -50,7 +51,7 @@ def test_t_joint_straight_on_crosses_the_open_side_and_ends_clamped_past_it():
         assert 250.0 < outcome.junction_odometry < 500.0 and not outcome.junction_missing
         robot_wait(h, 2.0)
         truth = h.ground_truth()
-        assert truth['poses']['rear_module'][0][0] > far_edge_x, truth['poses']['rear_module']
+        assert truth['poses']['bend_iv_module'][0][0] > far_edge_x, truth['poses']   # the rear V's apex wheel
         assert APEX_WHEELS <= set(truth['wheel_contacts'])
         assert STRAIGHT[0] <= truth['roll'] <= STRAIGHT[1]
         assert h.server.status() == 'Idle Clamped'

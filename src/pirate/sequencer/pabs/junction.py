@@ -16,7 +16,9 @@ Steps: look for the junction (drive until the front V loses its wall,
 distance with ``junction_missing``), stop, open the front V partly and hold
 it, drive the front part across, clamp the front, open the rear V, drive
 the rear part across, clamp the rear: the robot ends clamped in the pipe
-after the junction. The part that crosses is open, so neither V presses
+after the junction; if re-clamping rolled it out of the straight region
+(the twin rolled 0.05 rad doing so, bench/pab_junction_sweep), Clamp
+Straight's own machine re-adjusts it. The part that crosses is open, so neither V presses
 toward the open side "with which no contact is possible".
 
 Which (kind, direction) the PAB takes is :data:`TAKEN`: straight on
@@ -34,7 +36,7 @@ from pirate.sequencer.guards import CLAMP_BENDS
 from pirate.sequencer.junction_sensing import JunctionSensor
 from pirate.sequencer.pabs import codes
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, PabFailed, StateMachine, Transition
-from pirate.sequencer.pabs.clamp import in_region, region_around
+from pirate.sequencer.pabs.clamp import Clamp, in_region, region_around
 from pirate.robot import units
 from pirate.sequencer.pabs.drive import STANDSTILL_MM_S, Progress, speed_problem
 
@@ -47,13 +49,15 @@ CLAMPING_FRONT = 'clamping front'
 UNCLAMPING_REAR = 'unclamping rear partial'
 CROSSING_REAR = 'driving the rear across'
 CLAMPING_REAR = 'clamping rear'
+STRAIGHTENING = 'straightening (Clamp Straight)'
 
 #: found: the junction was sensed; front / rear: the part is clamped
-#: (full, as the robot senses it: angles and spring).
-Facts = collections.namedtuple('Facts', 'found front rear')
+#: (full, as the robot senses it: angles and spring); straight: the rear's
+#: roll in Table 5.4's straight region around the clamp it started in.
+Facts = collections.namedtuple('Facts', 'found front rear straight')
 
 FOUND = Guard('junction sensed', lambda f: f.found)
-DONE = Guard('front clamped AND rear clamped', lambda f: f.front and f.rear)
+DONE = Guard('front clamped AND rear clamped AND straight', lambda f: f.front and f.rear and f.straight)
 
 MACHINE = StateMachine(CHANGE_MODES, (
     Transition(CHANGE_MODES, SEARCHING, ALWAYS),
@@ -65,6 +69,9 @@ MACHINE = StateMachine(CHANGE_MODES, (
     Transition(UNCLAMPING_REAR, CROSSING_REAR, ALWAYS),
     Transition(CROSSING_REAR, CLAMPING_REAR, ALWAYS),
     Transition(CLAMPING_REAR, END, DONE),
+    Transition(CLAMPING_REAR, STRAIGHTENING, Guard('front clamped AND rear clamped AND NOT straight',
+                                                   lambda f: f.front and f.rear and not f.straight)),
+    Transition(STRAIGHTENING, END, ALWAYS),
 ))
 
 UPRIGHT = math.pi / 2
@@ -117,6 +124,7 @@ class TakeJunction(Pab):
         self.junction_missing = False
         self.sensor = None
         self.start_mm = None
+        self.target = UPRIGHT        # rad: the clamp it starts in (read when it starts)
 
     # --- accepting ----------------------------------------------------------
     def check(self, goal, view, guards):
@@ -143,13 +151,16 @@ class TakeJunction(Pab):
 
     def _check_clamp(self, view, guards):
         sensed = clamp_state.sensed(guards, view)
-        held = [c for c in self.clamps
-                if in_region(view.orientation, region_around(guards, 'straight', ORIENTATIONS[c]))]
-        if sensed != (clamp_state.FULL, clamp_state.FULL) or not held:
+        if sensed != (clamp_state.FULL, clamp_state.FULL) or not self._held(view, guards):
             return ('%s %s starts clamped %s (report 4.7.4); the robot is %s at %.2f rad'
                     % (self.label, self.direction.upper(), ' or '.join(self.clamps),
                        clamp_state.idle_state(sensed), view.orientation))
         return None
+
+    def _held(self, view, guards):
+        """Orientations (rad) of the allowed clamps whose straight region holds the robot's roll."""
+        return [ORIENTATIONS[c] for c in self.clamps
+                if in_region(view.orientation, region_around(guards, 'straight', ORIENTATIONS[c]))]
 
     # --- running --------------------------------------------------------------
     def actions(self):
@@ -163,15 +174,19 @@ class TakeJunction(Pab):
             UNCLAMPING_REAR: lambda ctx: _open_and_hold(ctx, 'rear'),
             CROSSING_REAR: lambda ctx: _drive_by(ctx, 'drive rear across', 'cross_rear_mm'),
             CLAMPING_REAR: lambda ctx: _clamp(ctx, 'rear'),
+            STRAIGHTENING: lambda ctx: Clamp(self.target).run(ctx),
         }
 
     def facts(self, ctx):
-        sensed = clamp_state.sensed(ctx.guards, ctx.feed.latest())
+        view = ctx.feed.latest()
+        sensed = clamp_state.sensed(ctx.guards, view)
         return Facts(found=self.sensor is not None and self.sensor.sensed is not None,
-                     front=sensed.front == clamp_state.FULL, rear=sensed.rear == clamp_state.FULL)
+                     front=sensed.front == clamp_state.FULL, rear=sensed.rear == clamp_state.FULL,
+                     straight=in_region(view.orientation, region_around(ctx.guards, 'straight', self.target)))
 
-    @staticmethod
-    def _change_modes(ctx):
+    def _change_modes(self, ctx):
+        """Rotation in position, front module in PWM; remember the clamp it starts in."""
+        self.target = (self._held(ctx.feed.latest(), ctx.guards) or [UPRIGHT])[0]
         ctx.prims.change_control_mode('rotation', 'position')
         ctx.prims.change_control_mode('front_tilt', 'pwm')
 
@@ -210,10 +225,13 @@ def _speed(goal, guards):
 
 
 def _time_bound(ctx, distance, speed):
-    """Robot seconds a drive of ``distance`` mm may take: at the speed the wheel
-    setpoint really gives (whole counts per PICO sample) plus the drive's margin."""
+    """Robot seconds a drive of ``distance`` mm may take: ``time_factor`` times the
+    time at the speed the wheel setpoint gives (whole counts per PICO sample),
+    plus the drive's margin. A wheel that stops is caught sooner by the drive's
+    no-progress check."""
     wheel_speed = units.wheel_counts_to_mm_s(units.mm_s_to_wheel_counts(speed))
-    return distance / wheel_speed + ctx.guards.drive['time_margin_s']
+    factor = float(ctx.guards.row('junction')['time_factor'])
+    return factor * distance / wheel_speed + ctx.guards.drive['time_margin_s']
 
 
 def _stop_wheels(ctx):
