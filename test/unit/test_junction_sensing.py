@@ -2,11 +2,12 @@
 
 The recordings are the physics twin's Small State as the Pirate State node
 turns it into SI units (RobotView), one per Mega cycle, of a robot clamped
-straight (or sideways) in 90 mm and driven at 50 mm/s by a Drive goal (recorded with
-``bench/pab_junction_sweep --record WORLD [--clamp LEFT]``, worlds of
-config/worlds/; BEND_DOWN with the front module's capsule shell of commit
-af8fe82, the others before it, which changes nothing the front V touches): (robot time s, odometry mm, Bend I angle rad, Bend I
-spring mNm). Ground truth was read only to say what each recording is.
+straight (or sideways) in 90 mm and driven at 50 mm/s by a Drive goal:
+(robot time s, odometry mm, Bend I angle rad, Bend I spring mNm). Recorded
+with ``bench/pab_junction_sweep --record WORLD [--clamp LEFT]`` (worlds of
+config/worlds/); BEND_DOWN with the front module's capsule shell of commit
+af8fe82, the others before it (it changes nothing the front V touches).
+Ground truth was read only to say what each recording is.
 """
 import pytest
 

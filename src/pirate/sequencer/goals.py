@@ -4,14 +4,14 @@ Missions (pirate.supervisory.mission) and the panel map
 (pirate.panel.config) both name goals in words and are checked against
 these tables before anything is sent (SPEC 6, report Table 4.4). Pure.
 """
-from pirate.sequencer.pabs import PABS
+from pirate.sequencer.pabs import PABS, codes
 
 #: PAB name -> goal code (Pirate.action's name constants).
 CODES = {row[0]: code for code, row in PABS.items()}
 CODE_NAMES = {code: name for name, code in CODES.items()}
 #: Pirate.action's option constants.
-OPTIONS = {'NONE': 0, 'LEFT': 1, 'RIGHT': 2, 'STRAIGHT': 3, 'UP': 4, 'DOWN': 5}
-OPTION_NAMES = {code: name for name, code in OPTIONS.items()}
+OPTION_NAMES = codes.OPTION_NAMES
+OPTIONS = {name: code for code, name in OPTION_NAMES.items()}
 #: The options each PAB needs (one of them); the others take none.
 PAB_OPTIONS = {'CLAMP_SIDEWAYS': ('LEFT', 'RIGHT'), 'T_JOINT': ('LEFT', 'RIGHT', 'STRAIGHT'),
                'MITRE_BEND': ('LEFT', 'RIGHT', 'UP', 'DOWN')}

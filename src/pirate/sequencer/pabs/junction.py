@@ -5,11 +5,10 @@ traction, unclamp and rotate according to the desired direction and
 reclamp the front part. This process has to be repeated so that the rear
 part ... pass[es] the bend in the same fashion"; a T-joint "the same, plus
 the open side with which no contact is possible". One table serves both
-junction kinds and every direction; what differs is data:
-
-the clamp the robot must hold before it starts (straight for a turn up
-or down, sideways toward a left / right turn, as
-:mod:`pirate.sequencer.junctions` rules; straight to go straight on).
+junction kinds and every direction; what differs is data: the clamp the
+robot must hold before it starts (straight for a turn up or down,
+sideways toward a left / right turn, as :mod:`pirate.sequencer.junctions`
+rules; straight to go straight on).
 
 Steps: look for the junction (drive until the front V loses its wall,
 :mod:`pirate.sequencer.junction_sensing`, or abort after the goal's
@@ -18,26 +17,25 @@ it, drive the front part across, clamp the front, open the rear V, drive
 the rear part across, clamp the rear: the robot ends clamped in the pipe
 after the junction; if re-clamping rolled it out of the straight region
 (the twin rolled 0.05 rad doing so, bench/pab_junction_sweep), Clamp
-Straight's own machine re-adjusts it. The part that crosses is open, so neither V presses
-toward the open side "with which no contact is possible".
+Straight's own machine re-adjusts it. The part that crosses is open, so
+neither V presses toward the open side "with which no contact is possible".
 
 Which (kind, direction) the PAB takes is :data:`TAKEN`: straight on
 through a T-joint. Every turn is refused with the reason: steering the
-front into a new pipe is not built, and in the physics twin (twin2
-physics) the front module's shell jams on the wall edges at a mitre bend's
-inner corner and at the near edge of a T-joint's hole under it before the
-front V reaches the junction (notes/issue-10.md, "Junctions").
+front into a new pipe is not built (in the twin the front module meets a
+mitre bend's far wall and the wheels stall before the front V loses a
+wall; notes/issue-10.md, "Junctions").
 """
 import collections
 import math
 
+from pirate.robot import units
 from pirate.sequencer import clamp_state
 from pirate.sequencer.guards import CLAMP_BENDS
 from pirate.sequencer.junction_sensing import JunctionSensor
 from pirate.sequencer.pabs import codes
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, PabFailed, StateMachine, Transition
 from pirate.sequencer.pabs.clamp import Clamp, in_region, region_around
-from pirate.robot import units
 from pirate.sequencer.pabs.drive import STANDSTILL_MM_S, Progress, speed_problem
 
 CHANGE_MODES = 'change control modes'
@@ -94,8 +92,6 @@ JUNCTIONS = {
 }
 #: (kind, direction) this PAB takes today; the rest are refused with the reason.
 TAKEN = {('tee', 'straight')}
-OPTION_NAMES = {codes.NONE: 'NONE', codes.LEFT: 'LEFT', codes.RIGHT: 'RIGHT', codes.STRAIGHT: 'STRAIGHT',
-                codes.UP: 'UP', codes.DOWN: 'DOWN'}
 
 
 class JunctionMissing(PabFailed):
@@ -129,17 +125,17 @@ class TakeJunction(Pab):
     # --- accepting ----------------------------------------------------------
     def check(self, goal, view, guards):
         options = JUNCTIONS[goal.name][3]
-        allowed = ' / '.join(OPTION_NAMES[o] for o in sorted(options))
+        allowed = ' / '.join(codes.OPTION_NAMES[o] for o in sorted(options))
         if self.direction is None:
-            return ('a %s is taken %s, not %s' % (self.label, allowed, OPTION_NAMES.get(goal.option, goal.option)))
+            return ('a %s is taken %s, not %s' % (self.label, allowed, codes.OPTION_NAMES.get(goal.option, goal.option)))
         if not self.takes(goal.name, goal.option):
             return ('%s %s is not yet taken by this PAB (steering into a new pipe is not built; '
                     'taken today: %s)'
                     % (self.label, self.direction.upper(), _taken_text()))
         if not guards.has('junction'):
             return 'no junction guards for a %d mm pipe' % guards.pipe_diameter
-        return (self._check_distance(goal, guards) or speed_problem(_speed(goal, guards), _speed(goal, guards))
-                or self._check_clamp(view, guards))
+        speed = _speed(goal, guards)
+        return self._check_distance(goal, guards) or speed_problem(speed, speed) or self._check_clamp(view, guards)
 
     @staticmethod
     def _check_distance(goal, guards):
