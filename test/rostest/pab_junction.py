@@ -2,15 +2,16 @@
 """rostest: Take T-joint over ROS with a real action client, against the
 physics twin (sim time), issue 10.5.
 
-Clamp Straight, then T_JOINT STRAIGHT: SUCCEEDED with the primitives
-``~expected``, the result's junction_odometry where the T-joint is (and
-junction_missing false), the server "Taking T-joint" in feedback and Idle
-Clamped after. A second T_JOINT STRAIGHT (300 mm, no junction before the
-end cap) is cancelled at a random instant of sim time (seed printed):
-PREEMPTED with the safe hold on the wire, or, when the draw came after its
-search ended, ABORTED with junction_missing. Built on seq_experiment's helpers.
+Clamp Straight, then T_JOINT STRAIGHT through the first of two T-joints:
+SUCCEEDED with the primitives ``~expected``, the result's junction_odometry
+where the T-joint is (and junction_missing false), the server "Taking
+T-joint" in feedback and Idle Clamped after. T_JOINT STRAIGHT again, toward
+the second, is cancelled at a random instant of sim time within
+``~cancel_within`` (about its duration; seed printed): PREEMPTED with the
+safe hold on the wire (or SUCCEEDED when the draw came after it ended);
+then Home leaves the robot Idle Unclamped from wherever the cancel left it.
+Built on seq_experiment's helpers.
 """
-import math
 import random
 import time
 
@@ -23,10 +24,11 @@ from seq_experiment import SequencerTest, make_goal
 
 CLAMP = {'name': PirateGoal.CLAMP_STRAIGHT}
 T_JOINT = {'name': PirateGoal.T_JOINT, 'option': PirateGoal.STRAIGHT}
+HOME = {'name': PirateGoal.HOME}
 
 
 class PabJunctionTest(SequencerTest):
-    """Clamp, cross a T-joint, look on and be cancelled at random."""
+    """Clamp, cross a T-joint, cancel the next at random, Home."""
 
     def _run(self, spec):
         self.server_states = set()
@@ -47,19 +49,16 @@ class PabJunctionTest(SequencerTest):
         seed = int(time.time() * 1000) % 100000
         cancel_after = random.Random(seed).uniform(0.2, float(rospy.get_param('~cancel_within')))
         rospy.loginfo('pab_junction: T_JOINT cancelled after %.2f sim s (seed %d)', cancel_after, seed)
-        self._send(dict(T_JOINT, distance=300.0))
+        self._send(T_JOINT)
         self._wait_sim(cancel_after)
         cancelled_at = time.monotonic()
         self.client.cancel_goal()
         state, result, text = self._finish()
-        if state == GoalStatus.ABORTED:
-            self.assertTrue(result.junction_missing, 'seed %d: %s' % (seed, text))
-            self.assertTrue(math.isnan(result.junction_odometry))
-        else:
-            self.assertEqual(state, GoalStatus.PREEMPTED, 'seed %d: %s' % (seed, text))
+        self.assertIn(state, (GoalStatus.PREEMPTED, GoalStatus.SUCCEEDED), 'seed %d: %s' % (seed, text))
+        if state == GoalStatus.PREEMPTED:
             self._assert_trace(result, outcome_last='preempted')
-        self._wait(lambda: self._safe_after(cancelled_at), 'a safe setpoint array', 10.0)
-        self.assertEqual(result.server_state, 'Idle Clamped', 'seed %d' % seed)
+            self._wait(lambda: self._safe_after(cancelled_at), 'a safe setpoint array', 10.0)
+        self.assertEqual(self._run(HOME).server_state, 'Idle Unclamped', 'seed %d' % seed)
 
 
 if __name__ == '__main__':
