@@ -8,7 +8,7 @@ running a PAB's table on the logic alone (no physics, no timing).
 from pirate.robot import safety
 from pirate.state.feed import RobotView
 from pirate.sequencer.guards import GuardBook, load_files
-from pirate.sequencer.primitives import Refused, clamp_name
+from pirate.sequencer.primitives import Refused, clamp_name, report_kind
 from pirate.sequencer.server import PabContext
 
 BOOK = GuardBook(*load_files())
@@ -48,8 +48,13 @@ class KinematicRobot(object):
         if counts == 0:
             self.efforts[joint] = 0.0
 
+    def hold(self, *joints):
+        """Worm-held at PWM 0: kinematically, the springs let go (as a 0 setpoint)."""
+        for joint in joints:
+            self.move_module(joint, 0)
+
     def move_front(self, kind='move_front'):
-        self.executed.append(kind.replace('_', ' '))
+        self.executed.append(report_kind(kind).replace('_', ' '))
         self.angles['front_tilt'] = self.guards.move(kind).guard
 
     def clamp(self, part, kind='clamp'):

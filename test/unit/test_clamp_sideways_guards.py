@@ -9,6 +9,12 @@ diameter): the wall angles are outer -2 beta, inner beta; the guards stop
 0.05 rad short of them. The front tilt swings the front module (length l)
 toward a wall; its tip, r off its axis, meets the wall at half the chord:
 sin(theta) = (chord / 2 - r) / l; the lift guard stops 0.03 rad short.
+
+110 mm non-nominal rows (issue 10.3, the report has none): a custom clamp
+must hold down to lying on a side, so each is the sideways guard; the first
+lift (on a side) is the report's 90 mm one scaled by the ratio of the two
+diameters' theta; the later lift the 90 mm one scaled by the nominal lifts'
+ratio (Table 5.3: 0.7 / 0.4).
 """
 import math
 
@@ -49,3 +55,16 @@ def test_sideways_lift_guard_keeps_the_front_module_off_the_wall(mm):
                                        (0.3, 'clamp'), (math.pi / 2, 'clamp'), (None, 'clamp')])
 def test_the_full_clamp_row_follows_the_roll(roll, row):
     assert cs.full_row(BOOK.for_diameter(90), roll) == row
+
+
+def test_110_mm_non_nominal_rows_are_derived_from_the_90_mm_ones_and_the_geometry():
+    g90, g110 = BOOK.for_diameter(90), BOOK.for_diameter(110)
+    sideways = g110.pair('clamp_sideways', 'rear')
+    for row in ('clamp_front_custom_first', 'clamp_front_custom', 'clamp_rear_custom'):
+        pair = g110.pair(row, 'front' if 'front' in row else 'rear')
+        assert (pair.outer.guard, pair.inner.guard) == (sideways.outer.guard, sideways.inner.guard)
+    theta = {mm: math.asin((chord_m(mm / 1000.0) / 2 - SHELL_R_M) / L_M) for mm in (90, 110)}
+    first = g90.move('move_front_first').guard * theta[110] / theta[90]
+    later = g90.move('move_front_later').guard * g110.move('move_front').guard / g90.move('move_front').guard
+    assert g110.move('move_front_first').guard == pytest.approx(first, abs=0.01)
+    assert g110.move('move_front_later').guard == pytest.approx(later, abs=0.01)

@@ -16,7 +16,7 @@ import pytest
 
 from pirate.sim.harness import SimHarness
 from test_sequencer_sim import run_bounded
-from test_sim_twin_sequencer import re_adjust_passes, robot_wait
+from test_sim_twin_sequencer import assert_clamped_straight, re_adjust_passes, robot_wait
 
 SPEEDUP = 10.0
 CLAMP_SIDEWAYS, LEFT, RIGHT = 1, 1, 2
@@ -35,4 +35,20 @@ def test_simple_clamp_sideways_on_the_twin(mm, option, target):
         truth = h.ground_truth()
         assert abs(truth['roll'] - target) < 0.1 and abs(truth['front_roll'] - target) < 0.1, truth['roll']
         assert APEX_WHEELS <= set(truth['wheel_contacts'])
+        assert h.server.status() == 'Idle Clamped'
+
+
+@pytest.mark.parametrize('roll', [0.0, math.pi], ids=['right side', 'left side'])
+def test_non_nominal_clamp_straight_in_110_mm_on_the_twin(roll):
+    """Issue 10.3: from lying on a side in 110 mm (the report built this only
+    in 90 mm) Clamp Straight runs with the derived custom clamp and lift
+    guards of config/guards_110.yaml and ends clamped straight, both V's on
+    the wall (ground truth)."""
+    with SimHarness(speedup=20.0, world='straight_110', orientation=roll) as h:
+        reason, outcome = run_bounded(h, h.goal(0, pipe_diameter=110))
+        assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+        executed = h.prims.executed
+        assert executed[:4] == ['clamp rear custom', 'rotate front', 'move front first', 'clamp front custom first']
+        assert executed[-3:] == ['unclamp front partial', 'rotate front (align)', 'clamp front']
+        assert_clamped_straight(h)
         assert h.server.status() == 'Idle Clamped'

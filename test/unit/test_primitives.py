@@ -8,7 +8,7 @@ import math
 
 import pytest
 
-from pirate.robot import safety, units
+from pirate.robot import safety, tables, units
 from pirate.state.feed import Cancelled, RobotView, TimedOut
 from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.primitives import MotionPrimitives, Refused
@@ -108,19 +108,42 @@ def test_custom_clamp_guards_and_names(rig):
 def test_unclamp_rear(rig, partial, outer_guard, inner_guard):
     prims, feed, _ = rig
     prims.setpoint.set('bend_iv', 256)
-    feed.states = [view(bend_iv=outer_guard - 0.01, bend_iii=inner_guard),
-                   view(bend_iv=outer_guard, bend_iii=inner_guard + 0.01),
-                   view(bend_iv=outer_guard, bend_iii=inner_guard)]
+    feed.states = [view({}, bend_iv=outer_guard - 0.01, bend_iii=inner_guard),
+                   view({}, bend_iv=outer_guard, bend_iii=inner_guard + 0.01),
+                   view(ON_WALL, bend_iv=outer_guard, bend_iii=inner_guard),   # open, a spring still pressing
+                   view({}, bend_iv=outer_guard, bend_iii=inner_guard)]
     prims.unclamp('rear', partial=partial)
     _, guard, _, during = feed.waits[0]
     assert during[7] == -100 and during[6] == 150      # bend_iv, bend_iii
-    assert [guard(s) for s in feed.states] == [False, False, True]
+    # A full unclamp ends when the part is free (angles AND springs); a partial one at its angles.
+    assert [guard(s) for s in feed.states] == [False, False, partial, True]
     assert prims.executed == ['unclamp rear%s' % (' partial' if partial else '')]
+
+
+def test_partial_unclamp_holds_the_open_v_zero_setpoints_on_the_wire_before_pwm(rig):
+    """Report 4.7.2.5: a very open V, held by the worms (PWM 0); the zeros
+    go out before the mode change, which goes out at once (as the safe hold)."""
+    prims, feed, wires = rig
+    prims.setpoint.enabled = True                 # after Play
+    order = []
+    for name in ('setpoint', 'control'):
+        publish = wires[name].publish
+        wires[name].publish = lambda data, name=name, publish=publish: (order.append((name, list(data))),
+                                                                        publish(data))
+    feed.states = [view({}, bend_iv=-0.47, bend_iii=0.28)]
+    prims.unclamp('rear', partial=True)
+    iv, iii = tables.element('bend_iv').index, tables.element('bend_iii').index
+    assert prims.control.mode_of('bend_iv') == prims.control.mode_of('bend_iii') == 'pwm'
+    modes = [(i, data[iii]) for i, (wire, data) in enumerate(order) if wire == 'control']
+    torque = next(i for i, mode in modes if mode == safety.MODE_CODES['torque'])
+    held = next(i for i, mode in modes if i > torque and mode == safety.MODE_CODES['pwm'])
+    on_the_wire = [data for wire, data in order[torque:held] if wire == 'setpoint'][-1]
+    assert on_the_wire[iv] == on_the_wire[iii] == 0
 
 
 def test_full_unclamp_front_uses_its_own_guards(rig):
     prims, feed, _ = rig
-    feed.states = [view(bend_i=-0.21, bend_ii=0.0), view(bend_i=-0.2, bend_ii=0.03)]
+    feed.states = [view({}, bend_i=-0.21, bend_ii=0.0), view({}, bend_i=-0.2, bend_ii=0.03)]
     prims.unclamp('front')
     assert [feed.waits[0][1](s) for s in feed.states] == [False, True]
 

@@ -100,3 +100,26 @@ def test_cancel_mid_clamp_leaves_the_safe_hold_and_the_pose_held():
         held = h.model.angle('bend_iv')
         robot_wait(h, 5.0)
         assert h.model.angle('bend_iv') == pytest.approx(held, abs=0.02)
+
+
+def test_a_partial_unclamp_leaves_an_open_v_and_the_clamped_part_holds_its_roll():
+    """Report 4.7.2.5: a partial unclamp leaves "a very open V". Found in
+    the twin (notes/issue-9.md): with the unclamp torque left on after the
+    guard the bends drove on past straight into a reverse V pressing the
+    wall (bend I +0.28, bend II -0.40 rad); turning that part then wedged
+    (here: the rotate to -0.7 rad timed out) or, lying half on a side,
+    rolled the clamped part by 0.2 rad per 1.4 rad turned. Held by the
+    worms (PWM 0) the V stays open and the clamped part keeps its roll."""
+    with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=math.pi / 2) as h:
+        h.prims.use(h.server.book.for_diameter(90))
+        h.start_robot()
+        for primitive in (lambda: h.prims.move_front('move_front'), lambda: h.prims.clamp('rear'),
+                          lambda: h.prims.clamp('front'), lambda: h.prims.unclamp('front', partial=True)):
+            primitive()
+        before = h.ground_truth()['roll']
+        h.prims.rotate(0.7)
+        h.prims.rotate(-0.7)
+        robot_wait(h, 1.0)
+        angles = h.feed.latest().angles
+        assert angles['bend_i'] < 0 < angles['bend_ii'], angles         # still a V, open
+        assert abs(h.ground_truth()['roll'] - before) < 0.05             # twin: 0.012 rad

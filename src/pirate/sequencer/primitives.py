@@ -126,11 +126,47 @@ class MotionPrimitives(object):
                 self.setpoint.set(bend.joint, bend.setpoint)
 
     def unclamp(self, part, partial=False):
-        """Open ``part``'s V fully (Home) or partially (re-adjust), 4.7.2.5."""
+        """Open ``part``'s V fully (Home) or partially (re-adjust), 4.7.2.5.
+
+        A partial unclamp leaves "a very open V" (4.7.2.5): at its guard the
+        bends are held by their worms (PWM 0). With the unclamp torque left
+        on they drove on past straight into a reverse V pressing the wall,
+        and the rotation that follows then dragged the clamped part round
+        (twin, notes/issue-9.md). The next clamp puts them back in torque.
+
+        A full unclamp ends when the part is free as the clamp state reads
+        it: angles open AND no spring pushing in the clamping direction.
+        Falling open under its weight a bend can pass its angle guard with
+        its spring still loaded the clamping way (twin: bend III -60 mNm),
+        and held there it read as pressing after Home.
+        """
         pair = self.guards.pair('unclamp_partial' if partial else 'unclamp', part)
         self._bends_in_torque(pair)
-        self.wait_for('unclamp %s%s' % (part, ' partial' if partial else ''),
-                      lambda v: pair.opened(v.angles), pair.describe(False))
+        if partial:
+            guard, text = (lambda v: pair.opened(v.angles)), pair.describe(False)
+        else:
+            guard = lambda v: pair.opened(v.angles) and not clamp_state.pressing(self.guards, part, v.efforts)  # noqa: E731
+            text = '%s and no spring pressing' % pair.describe(False)
+        self.wait_for('unclamp %s%s' % (part, ' partial' if partial else ''), guard, text)
+        if partial:
+            self.hold(pair.outer.joint, pair.inner.joint)
+
+    def hold(self, *joints):
+        """``joints`` held by their worm gears where they are (PWM 0).
+
+        The zero setpoints go out before the mode, as in the safe hold
+        (pirate.robot.hold): a mode change goes out at once, and PWM with
+        the torque setpoint still on the wire drove the bend until the next
+        setpoint array (Home's held inner spring then read as pressing now
+        and then, test_pab_home_twin.py under load).
+        """
+        with self.writing():
+            for joint in joints:
+                self.setpoint.set(joint, 0)
+            if self.setpoint.enabled:          # nothing goes out before Play
+                self.setpoint.publish_now()
+            for joint in joints:
+                self.control.set_mode(joint, 'pwm')
 
     def rotate(self, target_rad, name='rotate'):
         """Rotational module to ``target_rad`` from aligned (4.7.2.2).

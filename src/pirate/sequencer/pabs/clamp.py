@@ -181,11 +181,6 @@ class Clamp(Pab):
         if self.target is None:
             return ('CLAMP_SIDEWAYS needs a side: option LEFT (%d) or RIGHT (%d), not %r'
                     % (min(SIDES), max(SIDES), goal.option))
-        nominal = in_region(view.orientation, region_around(guards, 'nominal', self.target))
-        if not nominal and not guards.has('clamp_rear_custom'):
-            return ('orientation %.2f rad is non-nominal for a target of %.2f rad and the %d mm guards '
-                    'have no custom clamp (report 5.10: non-nominal only in 90 mm)'
-                    % (view.orientation, self.target, guards.pipe_diameter))
         return None
 
     def actions(self):

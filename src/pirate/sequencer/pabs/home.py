@@ -70,8 +70,7 @@ class Home(Pab):
         ctx.prims.unclamp(part)
         outer, inner = CLAMP_BENDS[part]
         ctx.prims.move_module(outer, 0)
-        ctx.prims.change_control_mode(inner, 'pwm')
-        ctx.prims.move_module(inner, 0)
+        ctx.prims.hold(inner)
 
     @staticmethod
     def _change_modes(ctx):
