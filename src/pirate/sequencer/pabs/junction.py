@@ -12,10 +12,10 @@ rules; straight to go straight on).
 
 Steps: look for the junction (drive until the front V loses its wall,
 :mod:`pirate.sequencer.junction_sensing`, or abort after the goal's
-distance with ``junction_missing``), stop, open the front V partly and hold
-it, drive the front part across, clamp the front, open the rear V, drive
-the rear part across, clamp the rear: the robot ends clamped in the pipe
-after the junction; if re-clamping rolled it out of the straight region
+distance with ``junction_missing``), stop, open the front V partly (the
+partial unclamp leaves it held by the worms), drive the front part across,
+clamp the front, open the rear V, drive the rear part across, clamp the
+rear: the robot ends clamped in the pipe after the junction; if re-clamping rolled it out of the straight region
 (the twin rolled 0.05 rad doing so, bench/pab_junction_sweep), Clamp
 Straight's own machine re-adjusts it. The part that crosses is open, so
 neither V presses toward the open side "with which no contact is possible".
@@ -31,7 +31,6 @@ import math
 
 from pirate.robot import units
 from pirate.sequencer import clamp_state
-from pirate.sequencer.guards import CLAMP_BENDS
 from pirate.sequencer.junction_sensing import JunctionSensor
 from pirate.sequencer.pabs import codes
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, PabFailed, StateMachine, Transition
@@ -164,10 +163,10 @@ class TakeJunction(Pab):
             CHANGE_MODES: self._change_modes,
             SEARCHING: self._search,
             STOPPING: _stop_wheels,
-            UNCLAMPING_FRONT: lambda ctx: _open_and_hold(ctx, 'front'),
+            UNCLAMPING_FRONT: lambda ctx: ctx.prims.unclamp('front', partial=True),
             CROSSING_FRONT: lambda ctx: _drive_by(ctx, 'drive front across', 'cross_front_mm'),
             CLAMPING_FRONT: lambda ctx: _clamp(ctx, 'front'),
-            UNCLAMPING_REAR: lambda ctx: _open_and_hold(ctx, 'rear'),
+            UNCLAMPING_REAR: lambda ctx: ctx.prims.unclamp('rear', partial=True),
             CROSSING_REAR: lambda ctx: _drive_by(ctx, 'drive rear across', 'cross_rear_mm'),
             CLAMPING_REAR: lambda ctx: _clamp(ctx, 'rear'),
             STRAIGHTENING: lambda ctx: Clamp(self.target).run(ctx),
@@ -239,19 +238,6 @@ def _stop_wheels(ctx):
 def _clamp(ctx, part):
     """Clamp ``part`` with the full guards of the robot's roll (upright or on a side)."""
     ctx.prims.clamp(part, clamp_state.full_row(ctx.guards, ctx.feed.latest().orientation))
-
-
-def _open_and_hold(ctx, part):
-    """Open ``part``'s V partially, then hold both bends where they are (PWM 0, the worms hold).
-
-    Left in torque mode at the unclamp setpoint the bends went on past
-    straight into a reverse V while the part was driven across a T-joint
-    (twin: Bend I +0.26 rad, Bend II -0.52 rad) and the wheels lost the floor.
-    """
-    ctx.prims.unclamp(part, partial=True)
-    for bend in CLAMP_BENDS[part]:
-        ctx.prims.change_control_mode(bend, 'pwm')
-        ctx.prims.move_module(bend, 0)
 
 
 def _drive_by(ctx, name, key):
