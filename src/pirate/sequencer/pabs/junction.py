@@ -126,7 +126,8 @@ class TakeJunction(Pab):
         options = JUNCTIONS[goal.name][3]
         allowed = ' / '.join(codes.OPTION_NAMES[o] for o in sorted(options))
         if self.direction is None:
-            return ('a %s is taken %s, not %s' % (self.label, allowed, codes.OPTION_NAMES.get(goal.option, goal.option)))
+            return 'a %s is taken %s, not %s' % (self.label, allowed,
+                                                 codes.OPTION_NAMES.get(goal.option, goal.option))
         if not self.takes(goal.name, goal.option):
             return ('%s %s is not yet taken by this PAB (steering into a new pipe is not built; '
                     'taken today: %s)'
