@@ -2,7 +2,8 @@
 """rostest: Take T-joint over ROS with a real action client, against the
 physics twin (sim time), issue 10.5.
 
-Clamp Straight, then T_JOINT STRAIGHT through the first of two T-joints:
+MITRE_BEND DOWN is rejected at once with its reason (no turn is taken
+yet). Clamp Straight, then T_JOINT STRAIGHT through the first of two T-joints:
 SUCCEEDED with the primitives ``~expected``, the result's junction_odometry
 where the T-joint is (and junction_missing false), the server "Taking
 T-joint" in feedback and Idle Clamped after. T_JOINT STRAIGHT again, toward
@@ -12,6 +13,7 @@ safe hold on the wire (or SUCCEEDED when the draw came after it ended);
 then Home leaves the robot Idle Unclamped from wherever the cancel left it.
 Built on seq_experiment's helpers.
 """
+import math
 import random
 import time
 
@@ -25,6 +27,7 @@ from seq_experiment import SequencerTest, make_goal
 CLAMP = {'name': PirateGoal.CLAMP_STRAIGHT}
 T_JOINT = {'name': PirateGoal.T_JOINT, 'option': PirateGoal.STRAIGHT}
 HOME = {'name': PirateGoal.HOME}
+MITRE_BEND = {'name': PirateGoal.MITRE_BEND, 'option': PirateGoal.DOWN}
 
 
 class PabJunctionTest(SequencerTest):
@@ -37,7 +40,16 @@ class PabJunctionTest(SequencerTest):
         self.assertEqual(state, GoalStatus.SUCCEEDED, '%s: %s' % (spec, text))
         return result
 
+    def _assert_mitre_bend_refused(self):
+        """MITRE_BEND takes no direction yet: refused at once with the reason, no junction in the result."""
+        self._send(MITRE_BEND)
+        state, result, text = self._finish()
+        self.assertEqual(state, GoalStatus.REJECTED, text)
+        self.assertIn('not yet taken by this PAB', text)
+        self.assertTrue(math.isnan(result.junction_odometry) and not result.junction_missing)
+
     def test_scenario(self):
+        self._assert_mitre_bend_refused()
         self._run(CLAMP)
         result = self._run(T_JOINT)
         self.assertEqual(self._assert_trace(result), rospy.get_param('~expected'))
