@@ -253,5 +253,5 @@ def test_pab_codes_match_the_action_definition():
     goal = pirate_msg.PirateGoal
     for code, (name, _) in PABS.items():
         assert getattr(goal, name) == code
-    for option in ('NONE', 'LEFT', 'RIGHT', 'STRAIGHT'):
+    for option in ('NONE', 'LEFT', 'RIGHT', 'STRAIGHT', 'UP', 'DOWN'):
         assert getattr(goal, option) == getattr(codes, option)

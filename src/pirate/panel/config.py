@@ -154,3 +154,24 @@ def scaled(entry, mode, value):
     if rule is None:
         return None
     return int(round(rule.gain * (rule.centre - value)))
+
+
+def pab_buttons(cfg):
+    """What the operator can start from the panel, one line per PAB button in
+    channel order: '<control>: <function>' (without its 'PAB ' prefix), marked when the Pirate Server does
+    not take that goal yet (so the operator knows before pressing), then the
+    PABs of Pirate.action no button starts."""
+    lines, named = [], set()
+    for entry in sorted(cfg.channels.values(), key=lambda e: e.channel):
+        if entry.action != 'pab':
+            continue
+        pab, option = goals.CODE_NAMES[entry.goal.name], goals.OPTION_NAMES[entry.goal.option]
+        named.add(pab)
+        taken = goals.built(pab, option if option != 'NONE' else None)
+        function = entry.function[4:] if entry.function.startswith('PAB ') else entry.function
+        lines.append('%s: %s%s' % (entry.control, function, '' if taken else ' (not yet taken)'))
+    missing = sorted(set(goals.CODES) - named)
+    if missing:
+        lines.append('no button: %s' % ', '.join(missing))
+    return lines
+

@@ -46,6 +46,9 @@ BODY, PANEL_EDGE, TEXT = (38, 38, 42), (90, 90, 96), (225, 225, 225)
 BUTTON_OFF, BUTTON_LIT, SLOT, THUMB = (70, 70, 76), (235, 40, 40), (15, 15, 15), (200, 200, 205)
 KNOB, KNOB_MARK = (120, 120, 128), (250, 250, 250)
 
+#: Where the PAB buttons are listed (screen px): under the transport buttons.
+PAB_LIST_X, PAB_LIST_Y, PAB_LIST_COLUMN_W = 14, STATUS_H + 188, 212
+
 Control = collections.namedtuple('Control', 'kind channel label rect')
 
 
@@ -82,9 +85,11 @@ class VirtualPanel(object):
         self.pab_text = 'PAB server: no news yet'
         self.operator_text = ''     # the Mapper's last message (refusals, results)
         self.mission_text = ''      # the mission executive's step, level and what it waits for
+        self.pab_list = []          # one line per PAB button (pirate.panel.config.pab_buttons)
         self._dragging = None
         self._held = None
         self._font = None
+        self._small_font = None
 
     def control(self, channel):
         return self._by_channel[channel]
@@ -192,6 +197,16 @@ class VirtualPanel(object):
             surface.blit(self._font.render(line, True, TEXT), (14, 8 + i * 18))
         for control in self.controls:
             getattr(self, '_draw_' + control.kind)(surface, control)
+        self._draw_pab_list(surface)
+
+    def _draw_pab_list(self, surface):
+        """The PAB buttons, in two columns under the transport buttons."""
+        if self._small_font is None:
+            self._small_font = pygame.font.Font(None, 15)
+        per_column = (len(self.pab_list) + 1) // 2
+        for i, line in enumerate(self.pab_list):
+            x, y = PAB_LIST_X + (i // per_column) * PAB_LIST_COLUMN_W, PAB_LIST_Y + (i % per_column) * 13
+            surface.blit(self._small_font.render(line, True, TEXT), (x, y))
 
     def _label(self, surface, text, center):
         image = self._font.render(text, True, TEXT)

@@ -12,7 +12,8 @@ action feedback and result.
 
 Private params: ``~fps`` (redraw rate, default 30), ``~screenshot`` (path:
 save the window there once after the first LED arrives or after 2 s, for
-documentation). Headless with ``SDL_VIDEODRIVER=dummy``.
+documentation), ``~panel_config`` (the panel map whose PAB buttons it lists,
+default config/nanokontrol2.yaml). Headless with ``SDL_VIDEODRIVER=dummy``.
 """
 import os
 import threading
@@ -20,12 +21,14 @@ import threading
 import pygame
 import rospy
 
-from pirate import names
+from pirate import names, paths
 from pirate.msg import (MidiInput, MidiOutput, MissionActionFeedback, MissionActionResult,
                         PirateActionFeedback, PirateActionResult)
 from std_msgs.msg import String
-from pirate.panel import virtual
+from pirate.panel import config, virtual
 
+#: The panel map whose PAB buttons the panel lists (the launch's panel_config default).
+PANEL_CONFIG = os.path.join(paths.CONFIG_DIR, 'nanokontrol2.yaml')
 #: actionlib_msgs/GoalStatus codes -> words for the operator.
 _TERMINAL = {2: 'preempted', 3: 'succeeded', 4: 'aborted', 5: 'rejected', 8: 'recalled'}
 
@@ -35,6 +38,7 @@ class VirtualPanelNode(object):
 
     def __init__(self):
         self.panel = virtual.VirtualPanel()
+        self.panel.pab_list = config.pab_buttons(config.load(rospy.get_param('~panel_config', PANEL_CONFIG)))
         self._lock = threading.Lock()
         self._pub = rospy.Publisher(names.MIDI_INPUT_TOPIC, MidiInput, queue_size=200)
         rospy.Subscriber(names.MIDI_OUTPUT_TOPIC, MidiOutput, self._on_led, queue_size=200)

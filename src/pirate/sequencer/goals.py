@@ -4,20 +4,25 @@ Missions (pirate.supervisory.mission) and the panel map
 (pirate.panel.config) both name goals in words and are checked against
 these tables before anything is sent (SPEC 6, report Table 4.4). Pure.
 """
-from pirate.sequencer.pabs import PABS
+from pirate.sequencer.pabs import PABS, codes
 
 #: PAB name -> goal code (Pirate.action's name constants).
 CODES = {row[0]: code for code, row in PABS.items()}
+CODE_NAMES = {code: name for name, code in CODES.items()}
 #: Pirate.action's option constants.
-OPTIONS = {'NONE': 0, 'LEFT': 1, 'RIGHT': 2, 'STRAIGHT': 3}
-OPTION_NAMES = {code: name for name, code in OPTIONS.items()}
+OPTION_NAMES = codes.OPTION_NAMES
+OPTIONS = {name: code for code, name in OPTION_NAMES.items()}
 #: The options each PAB needs (one of them); the others take none.
 PAB_OPTIONS = {'CLAMP_SIDEWAYS': ('LEFT', 'RIGHT'), 'T_JOINT': ('LEFT', 'RIGHT', 'STRAIGHT'),
-               'MITRE_BEND': ('LEFT', 'RIGHT')}
+               'MITRE_BEND': ('LEFT', 'RIGHT', 'UP', 'DOWN')}
 #: Goal fields a PAB takes besides its pipe diameter and option.
 PAB_FIELDS = {'DRIVE': ('distance', 'speed')}
 
 
-def built(pab):
-    """True when the Pirate Server can run PAB ``pab`` (a name of :data:`CODES`)."""
-    return PABS[CODES[pab]][1] is not None
+def built(pab, option=None):
+    """True when the Pirate Server can run PAB ``pab`` (a name of :data:`CODES`),
+    with ``option`` (a name of :data:`OPTIONS`) when one is given."""
+    pab_class = PABS[CODES[pab]][1]
+    if pab_class is None:
+        return False
+    return option is None or pab_class.takes(CODES[pab], OPTIONS[option])

@@ -228,7 +228,7 @@ class PirateManager(object):
                 self._pending.notify()
         if reason:
             rospy.logwarn('goal refused: %s', reason)
-            handle.set_rejected(PirateResult(success=False, message=reason), reason)
+            handle.set_rejected(PirateResult(success=False, message=reason, junction_odometry=float('nan')), reason)
 
     def _busy(self):
         """Reason while the current goal's handle is not terminal yet."""
@@ -263,11 +263,13 @@ class PirateManager(object):
                     self._current = None     # only now: the handle is terminal
 
     def _result(self, outcome):
-        """The result: success, message, the trace of primitives, the state after."""
+        """The result: success, message, the trace of primitives, the state after,
+        where a junction PAB sensed its junction."""
         steps = [PrimitiveStep(name=s.name, guard=s.guard, start=s.start, end=s.end, outcome=s.outcome)
                  for s in self.server.trace.steps]
         return PirateResult(success=outcome.status == SUCCEEDED, message=outcome.message,
-                            primitives=steps, server_state=self.server.status())
+                            primitives=steps, server_state=self.server.status(),
+                            junction_odometry=outcome.junction_odometry, junction_missing=outcome.junction_missing)
 
     def _publish_feedback(self, fb, progress=None):
         handle = self._current

@@ -17,6 +17,7 @@ ActionServer. Rules:
   outcome) for the result, because feedback may be lost on the way.
 """
 import collections
+import math
 import threading
 import traceback
 
@@ -33,7 +34,12 @@ IDLE_UNCLAMPED = clamp_state.IDLE_UNCLAMPED
 IDLE_CLAMPED = clamp_state.IDLE_CLAMPED
 SUCCEEDED, ABORTED, PREEMPTED = 'succeeded', 'aborted', 'preempted'
 
-Outcome = collections.namedtuple('Outcome', 'status message')
+#: How a goal ended. ``junction_odometry`` (mm of odometry from the goal's
+#: start to where a junction PAB sensed its junction, NaN when none) and
+#: ``junction_missing`` (it looked the goal's whole distance and found none)
+#: go into the action result for the supervisory layer's map check.
+Outcome = collections.namedtuple('Outcome', 'status message junction_odometry junction_missing',
+                                 defaults=(math.nan, False))
 Feedback = collections.namedtuple('Feedback', 'server_state pab_state primitive guard')
 #: The numbers of a running primitive: robot time since it started against
 #: its timeout (s), and its guard's joints, values and thresholds (rad).
@@ -142,6 +148,8 @@ class PirateServer(object):
             outcome = Outcome(ABORTED, '%s aborted by an internal error: %r' % (pab.name, bug))
             self._log(traceback.format_exc())
         finally:
+            outcome = outcome._replace(junction_odometry=getattr(pab, 'junction_odometry', math.nan),
+                                       junction_missing=getattr(pab, 'junction_missing', False))
             if outcome.status != SUCCEEDED:
                 self.prims.safe_hold()
             self.trace.end(self._robot_now(), outcome.status)

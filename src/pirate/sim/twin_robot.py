@@ -76,12 +76,20 @@ class RobotBuilder(object):
 
     def _module(self, body, name, mass, direction, length):
         """A module's inertial and round collision shell about its axis, reaching ``length`` from
-        the body origin in ``direction`` (+1 front, -1 rear)."""
+        the body origin in ``direction`` (+1 front, -1 rear).
+
+        The front module's shell is a capsule of the same length: it has no
+        wheel and rides on the floor ahead of the front V, and a flat
+        cylinder end caught the edge where two wall pieces meet (a mitre
+        bend's inner corner, a T-joint's run) and stopped the robot there
+        (issue 10.5, notes/issue-10.md)."""
         radius = self.geo['body_radius_m']
         centre = (direction * length / 2, 0, 0)
         ET.SubElement(body, 'inertial', pos=_fmt(centre), mass='%g' % mass,
                       diaginertia=_fmt(_cylinder_inertia(mass, radius, length)))
-        ET.SubElement(body, 'geom', type='cylinder', pos=_fmt(centre), size=_fmt((radius, length / 2)),
+        end = name == 'front_module'
+        ET.SubElement(body, 'geom', type='capsule' if end else 'cylinder', pos=_fmt(centre),
+                      size=_fmt((radius, length / 2 - (radius if end else 0.0))),
                       euler='0 1.5708 0', name=name + '_shell', **{'class': ROBOT_CLASS})
 
     def _wheel(self, body, board, x):

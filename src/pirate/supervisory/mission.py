@@ -101,6 +101,8 @@ class _Checker(object):
                 self.error(fields[key], '%s: %s takes no %s' % (what, pab, key))
         mm = self.diameter(fields.get('pipe_diameter'), default_mm)
         option = self.option(what, pab, fields.get('option'), node)
+        if option != OPTIONS['NONE'] and built(pab) and not built(pab, OPTION_NAMES[option]):
+            self.error(fields['option'], '%s: PAB %s %s is not implemented yet' % (what, pab, OPTION_NAMES[option]))
         distance = speed = 0.0
         if pab == 'DRIVE':
             distance, speed = self.drive_fields(what, fields, node)

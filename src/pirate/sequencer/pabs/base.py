@@ -87,6 +87,12 @@ class Pab(object):
         """The PAB instance that runs ``goal`` (a PAB serving several goals reads it here)."""
         return cls()
 
+    @classmethod
+    def takes(cls, name, option):
+        """False when this PAB refuses goal ``name`` with ``option`` whatever the
+        robot's state (a direction it does not take yet); codes of Pirate.action."""
+        return True
+
     def check(self, goal, view, guards):
         """Reason the goal cannot run, or None (called before accepting)."""
         return None

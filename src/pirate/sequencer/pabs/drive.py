@@ -49,11 +49,9 @@ class Drive(Pab):
 
     def check(self, goal, view, guards):
         speed = goal.speed or guards.drive['default_speed']
-        if not safety.drive_speed_ok(speed) or speed <= 0:
-            return 'drive speed %.1f mm/s outside (0, %.0f] mm/s' % (speed, safety.DRIVE_MAX_MM_S)
-        if units.mm_s_to_wheel_counts(min(speed, guards.drive['creep_speed'])) == 0:
-            return ('drive speed %.2f mm/s is below one wheel count per PICO sample (%.1f mm/s): '
-                    'the wheels would not turn' % (speed, units.wheel_counts_to_mm_s(1)))
+        problem = speed_problem(speed, min(speed, guards.drive['creep_speed']))
+        if problem:
+            return problem
         limit = guards.drive['max_distance']
         if not math.isfinite(goal.distance) or goal.distance == 0 or abs(goal.distance) > limit:
             return 'drive distance %r mm outside [-%.0f, %.0f] mm and not 0' % (goal.distance, limit, limit)
@@ -109,6 +107,16 @@ class Drive(Pab):
         if self.method == 'odometry':
             return 'drove %.1f mm by odometry (asked %.1f mm)' % (self.driven, ctx.goal.distance)
         return 'drove %.1f mm by time, eq 5.3 (no odometry)' % ctx.goal.distance
+
+
+def speed_problem(speed, slowest):
+    """Why a drive at ``speed`` mm/s (its slowest phase ``slowest``) cannot run, or None."""
+    if not safety.drive_speed_ok(speed) or speed <= 0:
+        return 'drive speed %.1f mm/s outside (0, %.0f] mm/s' % (speed, safety.DRIVE_MAX_MM_S)
+    if units.mm_s_to_wheel_counts(slowest) == 0:
+        return ('drive speed %.2f mm/s is below one wheel count per PICO sample (%.1f mm/s): '
+                'the wheels would not turn' % (speed, units.wheel_counts_to_mm_s(1)))
+    return None
 
 
 class Progress(object):

@@ -1,0 +1,253 @@
+"""Take T-joint and Take mitre bend (report 4.7.4; issue 10.5): one machine.
+
+The report: "start clamped, then detect when the front part loses
+traction, unclamp and rotate according to the desired direction and
+reclamp the front part. This process has to be repeated so that the rear
+part ... pass[es] the bend in the same fashion"; a T-joint "the same, plus
+the open side with which no contact is possible". One table serves both
+junction kinds and every direction; what differs is data: the clamp the
+robot must hold before it starts (straight for a turn up or down,
+sideways toward a left / right turn, as :mod:`pirate.sequencer.junctions`
+rules; straight to go straight on).
+
+Steps: look for the junction (drive until the front V loses its wall,
+:mod:`pirate.sequencer.junction_sensing`, or abort after the goal's
+distance with ``junction_missing``), stop, open the front V partly (the
+partial unclamp leaves it held by the worms), drive the front part across,
+clamp the front, open the rear V, drive the rear part across, clamp the
+rear: the robot ends clamped in the pipe after the junction; if re-clamping rolled it out of the straight region
+(the twin rolled 0.05 rad doing so, bench/pab_junction_sweep), Clamp
+Straight's own machine re-adjusts it. The part that crosses is open, so
+neither V presses toward the open side "with which no contact is possible".
+
+Which (kind, direction) the PAB takes is :data:`TAKEN`: straight on
+through a T-joint. Every turn is refused with the reason: steering the
+front into a new pipe is not built (in the twin the front module meets a
+mitre bend's far wall and the wheels stall before the front V loses a
+wall; notes/issue-10.md, "Junctions").
+"""
+import collections
+import math
+
+from pirate.robot import units
+from pirate.sequencer import clamp_state
+from pirate.sequencer.junction_sensing import JunctionSensor
+from pirate.sequencer.pabs import codes
+from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, PabFailed, StateMachine, Transition
+from pirate.sequencer.pabs.clamp import Clamp, in_region, region_around
+from pirate.sequencer.pabs.drive import STANDSTILL_MM_S, Progress, speed_problem
+
+CHANGE_MODES = 'change control modes'
+SEARCHING = 'looking for the junction'
+STOPPING = 'stopping'
+UNCLAMPING_FRONT = 'unclamping front partial'
+CROSSING_FRONT = 'driving the front across'
+CLAMPING_FRONT = 'clamping front'
+UNCLAMPING_REAR = 'unclamping rear partial'
+CROSSING_REAR = 'driving the rear across'
+CLAMPING_REAR = 'clamping rear'
+STRAIGHTENING = 'straightening (Clamp Straight)'
+
+#: found: the junction was sensed; front / rear: the part is clamped
+#: (full, as the robot senses it: angles and spring); straight: the rear's
+#: roll in Table 5.4's straight region around the clamp it started in.
+Facts = collections.namedtuple('Facts', 'found front rear straight')
+
+FOUND = Guard('junction sensed', lambda f: f.found)
+DONE = Guard('front clamped AND rear clamped AND straight', lambda f: f.front and f.rear and f.straight)
+
+MACHINE = StateMachine(CHANGE_MODES, (
+    Transition(CHANGE_MODES, SEARCHING, ALWAYS),
+    Transition(SEARCHING, STOPPING, FOUND),
+    Transition(STOPPING, UNCLAMPING_FRONT, ALWAYS),
+    Transition(UNCLAMPING_FRONT, CROSSING_FRONT, ALWAYS),
+    Transition(CROSSING_FRONT, CLAMPING_FRONT, ALWAYS),
+    Transition(CLAMPING_FRONT, UNCLAMPING_REAR, Guard('front clamped', lambda f: f.front)),
+    Transition(UNCLAMPING_REAR, CROSSING_REAR, ALWAYS),
+    Transition(CROSSING_REAR, CLAMPING_REAR, ALWAYS),
+    Transition(CLAMPING_REAR, END, DONE),
+    Transition(CLAMPING_REAR, STRAIGHTENING, Guard('front clamped AND rear clamped AND NOT straight',
+                                                   lambda f: f.front and f.rear and not f.straight)),
+    Transition(STRAIGHTENING, END, ALWAYS),
+))
+
+UPRIGHT = math.pi / 2
+#: Clamp orientations (rad, Fig 4.7) by name.
+ORIENTATIONS = {'straight': UPRIGHT, 'sideways LEFT': math.pi, 'sideways RIGHT': 0.0}
+#: goal code -> (kind, what it is called, server state (Fig 4.2),
+#: {option: (direction, clamps allowed before it)}).
+#: A turn needs the clamp of pirate.sequencer.junctions.required_clamp. Straight
+#: on through a T-joint starts clamped straight: lying on a side the twin
+#: sensed the open side but the front part, driven across by odometry with
+#: the odometry wheel (Bend I) on the open part, moved 85 mm for 210 mm
+#: counted and could not clamp over the hole (notes/issue-10.md).
+JUNCTIONS = {
+    codes.MITRE_BEND: ('mitre', 'mitre bend', 'Taking Mitre bend', {
+        codes.LEFT: ('left', ('sideways LEFT',)), codes.RIGHT: ('right', ('sideways RIGHT',)),
+        codes.UP: ('up', ('straight',)), codes.DOWN: ('down', ('straight',))}),
+    codes.T_JOINT: ('tee', 'T-joint', 'Taking T-joint', {
+        codes.LEFT: ('left', ('sideways LEFT',)), codes.RIGHT: ('right', ('sideways RIGHT',)),
+        codes.STRAIGHT: ('straight', ('straight',))}),
+}
+#: (kind, direction) this PAB takes today; the rest are refused with the reason.
+TAKEN = {('tee', 'straight')}
+
+
+class JunctionMissing(PabFailed):
+    """No junction within the goal's distance (the result says junction_missing)."""
+
+
+class TakeJunction(Pab):
+    """Take the junction ahead: ``kind`` 'mitre' or 'tee', ``direction`` or None (bad option)."""
+
+    machine = MACHINE
+
+    @classmethod
+    def for_goal(cls, goal):
+        kind, label, name, options = JUNCTIONS[goal.name]
+        direction, clamps = options.get(goal.option, (None, ()))
+        return cls(kind, label, name, direction, clamps)
+
+    @classmethod
+    def takes(cls, name, option):
+        direction = JUNCTIONS[name][3].get(option, (None,))[0]
+        return (JUNCTIONS[name][0], direction) in TAKEN
+
+    def __init__(self, kind, label, name, direction, clamps):
+        self.kind, self.label, self.name, self.direction, self.clamps = kind, label, name, direction, clamps
+        self.junction_odometry = math.nan       # mm from the goal's start (result field)
+        self.junction_missing = False
+        self.sensor = None
+        self.start_mm = None
+        self.target = UPRIGHT        # rad: the clamp it starts in (read when it starts)
+
+    # --- accepting ----------------------------------------------------------
+    def check(self, goal, view, guards):
+        options = JUNCTIONS[goal.name][3]
+        allowed = ' / '.join(codes.OPTION_NAMES[o] for o in sorted(options))
+        if self.direction is None:
+            return 'a %s is taken %s, not %s' % (self.label, allowed,
+                                                 codes.OPTION_NAMES.get(goal.option, goal.option))
+        if not self.takes(goal.name, goal.option):
+            return ('%s %s is not yet taken by this PAB (steering into a new pipe is not built; '
+                    'taken today: %s)'
+                    % (self.label, self.direction.upper(), _taken_text()))
+        if not guards.has('junction'):
+            return 'no junction guards for a %d mm pipe' % guards.pipe_diameter
+        speed = _speed(goal, guards)
+        return self._check_distance(goal, guards) or speed_problem(speed, speed) or self._check_clamp(view, guards)
+
+    @staticmethod
+    def _check_distance(goal, guards):
+        limit = float(guards.row('junction')['max_search_mm'])
+        if not math.isfinite(goal.distance) or goal.distance < 0 or goal.distance > limit:
+            return ('junction search distance %r mm outside [0, %.0f] mm (0: the default; taking a '
+                    'junction rear first is not built)' % (goal.distance, limit))
+        return None
+
+    def _check_clamp(self, view, guards):
+        sensed = clamp_state.sensed(guards, view)
+        if sensed != (clamp_state.FULL, clamp_state.FULL) or not self._held(view, guards):
+            return ('%s %s starts clamped %s (report 4.7.4); the robot is %s at %.2f rad'
+                    % (self.label, self.direction.upper(), ' or '.join(self.clamps),
+                       clamp_state.idle_state(sensed), view.orientation))
+        return None
+
+    def _held(self, view, guards):
+        """Orientations (rad) of the allowed clamps whose straight region holds the robot's roll."""
+        return [ORIENTATIONS[c] for c in self.clamps
+                if in_region(view.orientation, region_around(guards, 'straight', ORIENTATIONS[c]))]
+
+    # --- running --------------------------------------------------------------
+    def actions(self):
+        return {
+            CHANGE_MODES: self._change_modes,
+            SEARCHING: self._search,
+            STOPPING: _stop_wheels,
+            UNCLAMPING_FRONT: lambda ctx: ctx.prims.unclamp('front', partial=True),
+            CROSSING_FRONT: lambda ctx: _drive_by(ctx, 'drive front across', 'cross_front_mm'),
+            CLAMPING_FRONT: lambda ctx: _clamp(ctx, 'front'),
+            UNCLAMPING_REAR: lambda ctx: ctx.prims.unclamp('rear', partial=True),
+            CROSSING_REAR: lambda ctx: _drive_by(ctx, 'drive rear across', 'cross_rear_mm'),
+            CLAMPING_REAR: lambda ctx: _clamp(ctx, 'rear'),
+            STRAIGHTENING: lambda ctx: Clamp(self.target).run(ctx),
+        }
+
+    def facts(self, ctx):
+        view = ctx.feed.latest()
+        sensed = clamp_state.sensed(ctx.guards, view)
+        return Facts(found=self.sensor is not None and self.sensor.sensed is not None,
+                     front=sensed.front == clamp_state.FULL, rear=sensed.rear == clamp_state.FULL,
+                     straight=in_region(view.orientation, region_around(ctx.guards, 'straight', self.target)))
+
+    def _change_modes(self, ctx):
+        """Rotation in position, front module in PWM; remember the clamp it starts in."""
+        self.target = (self._held(ctx.feed.latest(), ctx.guards) or [UPRIGHT])[0]
+        ctx.prims.change_control_mode('rotation', 'position')
+        ctx.prims.change_control_mode('front_tilt', 'pwm')
+
+    def _search(self, ctx):
+        """Drive until the junction is sensed, or JunctionMissing after the goal's distance."""
+        row = ctx.guards.row('junction')
+        distance = ctx.goal.distance or float(row['search_mm'])
+        start = ctx.feed.latest()
+        self.start_mm, self.sensor = start.odometry, JunctionSensor(ctx.guards, start)
+        progress = Progress(ctx.guards.drive, start)
+        speed = _speed(ctx.goal, ctx.guards)
+        ctx.prims.drive_at_velocity(speed)
+        view = ctx.prims.wait_for(
+            'look for the junction',
+            lambda v: progress.check(v) and (self.sensor.update(v) or v.odometry - self.start_mm >= distance),
+            'front V loses its wall, or odometry +%.0f mm' % distance, _time_bound(ctx, distance, speed))
+        if self.sensor.sensed is None:
+            self.junction_missing = True
+            raise JunctionMissing('no junction within %.0f mm (odometry %.0f mm from the start; the front V '
+                                  'kept its wall)' % (distance, view.odometry - self.start_mm))
+        self.junction_odometry = self.sensor.sensed.odometry - self.start_mm
+
+    def summary(self, ctx):
+        return ('%s %s: junction sensed %.0f mm after the start (%s), %d motion primitives, ended clamped'
+                % (self.kind, self.direction, self.junction_odometry, self.sensor.sensed.why,
+                   len(ctx.prims.executed)))
+
+
+def _taken_text():
+    return ', '.join('%s %s' % (kind, direction.upper()) for kind, direction in sorted(TAKEN))
+
+
+def _speed(goal, guards):
+    """mm/s while looking and crossing: the goal's, else the junction row's."""
+    return goal.speed or float(guards.row('junction')['search_speed'])
+
+
+def _time_bound(ctx, distance, speed):
+    """Robot seconds a drive of ``distance`` mm may take: ``time_factor`` times the
+    time at the speed the wheel setpoint gives (whole counts per PICO sample),
+    plus the drive's margin. A wheel that stops is caught sooner by the drive's
+    no-progress check."""
+    wheel_speed = units.wheel_counts_to_mm_s(units.mm_s_to_wheel_counts(speed))
+    factor = float(ctx.guards.row('junction')['time_factor'])
+    return factor * distance / wheel_speed + ctx.guards.drive['time_margin_s']
+
+
+def _stop_wheels(ctx):
+    ctx.prims.drive_at_velocity(0.0)
+    ctx.prims.wait_for('stop wheels', lambda v: abs(v.velocity) < STANDSTILL_MM_S,
+                       '|velocity| < %.0f mm/s' % STANDSTILL_MM_S)
+
+
+def _clamp(ctx, part):
+    """Clamp ``part`` with the full guards of the robot's roll (upright or on a side)."""
+    ctx.prims.clamp(part, clamp_state.full_row(ctx.guards, ctx.feed.latest().orientation))
+
+
+def _drive_by(ctx, name, key):
+    """Drive the junction row's ``key`` mm of odometry at the search speed, then stop."""
+    row = ctx.guards.row('junction')
+    distance, speed = float(row[key]), _speed(ctx.goal, ctx.guards)
+    start = ctx.feed.latest()
+    progress = Progress(ctx.guards.drive, start)
+    ctx.prims.drive_at_velocity(speed)
+    ctx.prims.wait_for(name, lambda v: progress.check(v) and v.odometry - start.odometry >= distance,
+                       'odometry +%.0f mm' % distance, _time_bound(ctx, distance, speed))
+    _stop_wheels(ctx)

@@ -1,0 +1,143 @@
+"""Take T-joint / Take mitre bend (issue 10.5): the one table, and every refusal.
+
+- the table prints, every state is reachable, and exhaustively over its
+  facts at most one transition fires per state, exactly one when the
+  facts agree with what the state's action just did;
+- the facts of a T-joint taken straight on walk the report's steps;
+- each goal the PAB cannot run is refused at once with its reason.
+"""
+import collections
+import itertools
+import math
+
+import pytest
+
+from pirate.state.feed import RobotView
+from pirate.sequencer.guards import GuardBook, load_files
+from pirate.sequencer.pabs import PABS, codes
+from pirate.sequencer.pabs import junction as jn
+from pirate.sequencer.pabs.base import END, PabFailed
+
+BOOK = GuardBook(*load_files())
+ALL_FACTS = [jn.Facts(*values) for values in itertools.product((True, False), repeat=4)]
+
+#: What each state's action guarantees about the facts read right after it.
+POSTCONDITION = {
+    jn.CHANGE_MODES: lambda f: True,
+    jn.SEARCHING: lambda f: f.found,                 # else it raised JunctionMissing
+    jn.STOPPING: lambda f: f.found,
+    jn.UNCLAMPING_FRONT: lambda f: f.found and not f.front,
+    jn.CROSSING_FRONT: lambda f: f.found and not f.front,
+    jn.CLAMPING_FRONT: lambda f: f.found and f.front,
+    jn.UNCLAMPING_REAR: lambda f: f.found and f.front and not f.rear,
+    jn.CROSSING_REAR: lambda f: f.found and f.front and not f.rear,
+    jn.CLAMPING_REAR: lambda f: f.found and f.front and f.rear,
+    jn.STRAIGHTENING: lambda f: f.found and f.front and f.rear and f.straight,
+}
+
+
+def test_the_table_prints_every_transition():
+    table = jn.MACHINE.table()
+    assert table.splitlines()[0].split() == ['state', 'next', 'state', 'guard']
+    assert len(table.splitlines()) == len(jn.MACHINE.transitions) + 1
+    assert set(jn.MACHINE.states) == set(POSTCONDITION) | {END}
+
+
+@pytest.mark.parametrize('state', sorted(POSTCONDITION))
+def test_at_most_one_transition_and_one_where_the_action_succeeded(state):
+    for facts in ALL_FACTS:
+        fired = [t for t in jn.MACHINE.exits(state) if t.guard.test(facts)]
+        assert len(fired) <= 1, (state, facts)
+        if POSTCONDITION[state](facts):
+            assert len(fired) == 1, (state, facts)
+
+
+def test_a_clamp_that_does_not_hold_ends_the_pab():
+    with pytest.raises(PabFailed):
+        jn.MACHINE.next(jn.CLAMPING_REAR, jn.Facts(found=True, front=True, rear=False, straight=True))
+
+
+def test_straight_through_a_t_joint_walks_the_reports_steps():
+    """Report 4.7.4: detect, unclamp front, re-clamp front, the rear the same way."""
+    facts = jn.Facts(found=False, front=True, rear=True, straight=True)
+    after = {jn.SEARCHING: dict(found=True), jn.UNCLAMPING_FRONT: dict(front=False),
+             jn.CLAMPING_FRONT: dict(front=True), jn.UNCLAMPING_REAR: dict(rear=False),
+             jn.CLAMPING_REAR: dict(rear=True)}
+    state, walked = jn.MACHINE.initial, []
+    while state != END:
+        walked.append(state)
+        facts = facts._replace(**after.get(state, {}))
+        state = jn.MACHINE.next(state, facts)
+    assert walked == [jn.CHANGE_MODES, jn.SEARCHING, jn.STOPPING, jn.UNCLAMPING_FRONT, jn.CROSSING_FRONT,
+                      jn.CLAMPING_FRONT, jn.UNCLAMPING_REAR, jn.CROSSING_REAR, jn.CLAMPING_REAR]
+
+
+def test_clamped_past_the_junction_but_rolled_out_of_straight_re_adjusts():
+    rolled = jn.Facts(found=True, front=True, rear=True, straight=False)
+    assert jn.MACHINE.next(jn.CLAMPING_REAR, rolled) == jn.STRAIGHTENING
+    assert jn.MACHINE.next(jn.STRAIGHTENING, rolled._replace(straight=True)) == END
+
+
+# --- refusals ------------------------------------------------------------------
+Goal = collections.namedtuple('Goal', 'name option distance speed pipe_diameter')
+CLAMPED = dict(bend_i=-1.0, bend_ii=0.5, bend_iii=0.5, bend_iv=-1.0, rotation=0.0, front_tilt=0.44)   # 90 mm, twin
+ON_WALL = dict(bend_i=241.0, bend_iv=241.0)
+
+
+def view(orientation=math.pi / 2, angles=CLAMPED, efforts=ON_WALL):
+    return RobotView(dict(angles), orientation, 0.0, 0.0, 1.0, dict(efforts))
+
+
+def check(name, option, distance=0.0, speed=0.0, robot=None, mm=90):
+    goal = Goal(name, option, distance, speed, mm)
+    return PABS[name][1].for_goal(goal).check(goal, robot or view(), BOOK.for_diameter(mm))
+
+
+@pytest.mark.parametrize('name, option, needle', [
+    (codes.MITRE_BEND, codes.STRAIGHT, 'a mitre bend is taken LEFT / RIGHT / UP / DOWN, not STRAIGHT'),
+    (codes.MITRE_BEND, codes.NONE, 'not NONE'),
+    (codes.T_JOINT, codes.UP, 'a T-joint is taken LEFT / RIGHT / STRAIGHT, not UP'),
+    (codes.T_JOINT, codes.DOWN, 'not DOWN'),
+    (codes.T_JOINT, codes.NONE, 'not NONE'),
+    (codes.T_JOINT, 9, 'not 9'),
+])
+def test_a_direction_the_junction_cannot_have_is_refused(name, option, needle):
+    assert needle in check(name, option)
+
+
+@pytest.mark.parametrize('name, option', [(codes.MITRE_BEND, o) for o in
+                                          (codes.LEFT, codes.RIGHT, codes.UP, codes.DOWN)]
+                         + [(codes.T_JOINT, codes.LEFT), (codes.T_JOINT, codes.RIGHT)])
+def test_turns_are_refused_as_not_yet_taken(name, option):
+    assert 'not yet taken by this PAB' in check(name, option)
+
+
+@pytest.mark.parametrize('distance', [-100.0, 2001.0, float('nan'), float('inf')])
+def test_a_search_distance_out_of_range_is_refused(distance):
+    assert 'search distance' in check(codes.T_JOINT, codes.STRAIGHT, distance=distance)
+
+
+@pytest.mark.parametrize('speed', [-20.0, 171.0, 0.1])
+def test_a_speed_the_wheels_cannot_drive_is_refused(speed):
+    assert 'drive speed' in check(codes.T_JOINT, codes.STRAIGHT, speed=speed)
+
+
+@pytest.mark.parametrize('robot, needle', [
+    (view(angles=dict(CLAMPED, bend_i=-0.1, bend_ii=0.02), efforts={}), 'front free'),
+    (view(efforts={}), 'Idle Partly Clamped'),                     # clamp angles, nothing on the wall
+    (view(orientation=1.0), 'at 1.00 rad'),                        # clamped, but not straight nor on a side
+])
+def test_the_robot_must_start_clamped(robot, needle):
+    reason = check(codes.T_JOINT, codes.STRAIGHT, robot=robot)
+    assert 'starts clamped straight' in reason and needle in reason
+
+
+@pytest.mark.parametrize('orientation', [0.0, math.pi])
+def test_straight_on_from_a_sideways_clamp_is_refused(orientation):
+    assert 'starts clamped straight' in check(codes.T_JOINT, codes.STRAIGHT, robot=view(orientation))
+
+
+@pytest.mark.parametrize('mm', [90, 110])
+def test_straight_on_through_a_t_joint_clamped_straight_is_accepted(mm):
+    angles = CLAMPED if mm == 90 else dict(CLAMPED, bend_i=-1.3, bend_ii=0.7, bend_iii=0.7, bend_iv=-1.3)
+    assert check(codes.T_JOINT, codes.STRAIGHT, distance=800.0, robot=view(angles=angles), mm=mm) is None
