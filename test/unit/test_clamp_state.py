@@ -53,6 +53,30 @@ def test_free_and_full_per_diameter(mm):
     assert cs.classify(guards, angles(), {}) == cs.ClampState(cs.FREE, cs.FREE)
 
 
+#: What seq_mission's robot sensed right after Home said "unclamped" (fast fake,
+#: under load): the rear's held inner bend had taken up its outer bend's closure
+#: and stood 0.0036 rad past its 0.07 rad unclamp guard, no spring pressing.
+AFTER_HOME = (dict(bend_i=-0.196, bend_ii=-0.020, bend_iii=0.0736, bend_iv=-0.1457),
+              dict(bend_ii=240.1))
+
+
+def test_a_part_settling_just_past_its_unclamp_guard_is_still_free():
+    guards = BOOK.for_diameter(90)
+    pose, efforts = AFTER_HOME
+    assert not guards.pair('unclamp', 'rear').opened(angles(**pose))   # past the primitive's exact guard
+    assert cs.idle_state(cs.classify(guards, angles(**pose), efforts)) == cs.IDLE_UNCLAMPED
+
+
+@pytest.mark.parametrize('mm', [90, 110])
+def test_past_the_free_margin_or_pressing_is_partly_clamped(mm):
+    guards = BOOK.for_diameter(mm)
+    rear = guards.pair('unclamp', 'rear')
+    beyond = rear.inner.guard + cs.free_margin_rad(guards) + 0.005
+    assert cs.classify_part(guards, 'rear', angles(bend_iii=beyond), {}) == cs.PARTLY
+    pressing = {rear.inner.joint: -cs.spring_contact_mnm(guards) - 1.0}
+    assert cs.classify_part(guards, 'rear', angles(), pressing) == cs.PARTLY
+
+
 def test_a_90_mm_clamp_is_not_a_110_mm_clamp():
     pose = angles(**dict(FRONT_FULL, **REAR_FULL))
     assert cs.classify(BOOK.for_diameter(90), pose, ON_WALL) == (cs.FULL, cs.FULL)

@@ -17,8 +17,9 @@ Per part (front = Bend I/II, rear = Bend IV/III, SPEC 2) the classes are:
   uses the ``clamp_sideways`` row (derived from that chord, see
   config/guards_<mm>.yaml), so a Clamp Sideways reads as clamped and the
   server accepts Drive after it;
-- ``free``: both bends back inside the full unclamp guard AND neither
-  spring pushes in the clamping direction (``spring_contact_mnm``);
+- ``free``: both bends back inside the full unclamp guard (give or take
+  ``free_margin_rad``) AND neither spring pushes in the clamping direction
+  (``spring_contact_mnm``);
 - ``partly clamped``: anything else - bends between open and clamped, bends
   past a clamp guard with the V short of the wall (a cancel between the
   guard and the wall leaves that), or open-looking bends whose spring says
@@ -38,6 +39,14 @@ a cancel, "clamped" with the rear apex off the wall). The worm gears keep the sp
 deflection when the motors stop, so a clamp held at PWM 0 still reads as
 pressing. Only the clamping direction counts: an unclamp drives the bends
 against their straight stop, which loads the springs the other way.
+
+Why a margin on "free": Home's unclamp stops a part exactly at its unclamp
+guard, and the part then settles a few hundredths of a rad as its held
+inner bend takes up the outer bend's closure (seq_mission, 1 run in 6 under
+load: bend III 0.0736 rad against the 0.07 guard, no spring pressing, and the
+server said "rear partly clamped" right after Home said unclamped). The
+primitive's guard stays exact; the classification has the hysteresis, so
+the state the operator reads does not flip on a settling bend.
 
 The angle thresholds are the guard rows of ``config/guards_<mm>.yaml``;
 the spring threshold is that file's ``clamp_state`` row, so each pipe
@@ -75,6 +84,11 @@ def spring_clamp_mnm(guards):
     return float(guards.row('clamp_state')['spring_clamp_mnm'])
 
 
+def free_margin_rad(guards):
+    """How far (rad) past the unclamp guard a part with no spring pressing still reads as free."""
+    return float(guards.row('clamp_state')['free_margin_rad'])
+
+
 def on_side(guards, orientation):
     """True when the rear's roll ``orientation`` (rad) lies in the nominal band around a side."""
     if orientation is None:
@@ -104,7 +118,7 @@ def classify_part(guards, part, angles, efforts, orientation=None):
     for row in CUSTOM_ROWS[part]:
         if guards.has(row) and clamped(guards, guards.pair(row, part), angles, efforts):
             return CUSTOM
-    if guards.pair('unclamp', part).opened(angles) and not pressing(guards, part, efforts):
+    if guards.pair('unclamp', part).opened(angles, free_margin_rad(guards)) and not pressing(guards, part, efforts):
         return FREE
     return PARTLY
 

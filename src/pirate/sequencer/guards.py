@@ -26,10 +26,10 @@ class PairGuard(collections.namedtuple('PairGuard', 'kind outer inner')):
         return (angles[self.outer.joint] <= self.outer.guard
                 and angles[self.inner.joint] >= self.inner.guard)
 
-    def opened(self, angles):
-        """Unclamp guard: both bends back at least this close to 0."""
-        return (angles[self.outer.joint] >= self.outer.guard
-                and angles[self.inner.joint] <= self.inner.guard)
+    def opened(self, angles, margin_rad=0.0):
+        """Unclamp guard: both bends back at least this close to 0 (less ``margin_rad``)."""
+        return (angles[self.outer.joint] >= self.outer.guard - margin_rad
+                and angles[self.inner.joint] <= self.inner.guard + margin_rad)
 
     def describe(self, closing):
         """The guard as text, for feedback and logs."""
