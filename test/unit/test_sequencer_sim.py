@@ -1,7 +1,7 @@
 """Fast end-to-end tier: the whole sequencer against the physics model.
 
 SimHarness runs the Pirate Server, the PABs and the motion primitives
-against pirate.sim.model in one process (no ROS), the robot paced at
+against pirate.sim.fake_robot in one process (no ROS), the robot paced at
 SPEEDUP x real time. Every goal runs under a watchdog thread, so a hang
 fails the test instead of blocking it. Checks (issue 3):
 - the report's four experiments (Tables 6.1-6.4): success, final

@@ -1,7 +1,7 @@
 """ROS wrapper of firmware-in-the-loop (nodes/fil_robot).
 
 Starts the native firmware between a pseudo-terminal at ``~link`` (the
-port serial_node opens) and simulated PICO boards around a PirateModel.
+port serial_node opens) and simulated PICO boards around a FakeRobot.
 Private params: ``~link`` (path of the pty symlink), ``~baud`` (paced line
 rate, 57600), ``~pipe_diameter`` (mm), ``~orientation`` (rad),
 ``~seed`` (sensor noise, -1 none), ``~firmware`` (path of
@@ -20,7 +20,7 @@ from std_msgs.msg import String
 
 from pirate.link.fil import FirmwareInTheLoop, build_native_firmware
 from pirate.robot import tables
-from pirate.sim.model import PirateModel
+from pirate.sim.fake_robot import FakeRobot
 
 
 def main():
@@ -33,7 +33,7 @@ def main():
             rospy.logfatal(str(error))
             raise SystemExit(1)
     seed = int(rospy.get_param('~seed', -1))
-    model = PirateModel(pipe_diameter=rospy.get_param('~pipe_diameter', 90),
+    model = FakeRobot(pipe_diameter=rospy.get_param('~pipe_diameter', 90),
                         orientation=float(rospy.get_param('~orientation', 1.5707963)),
                         seed=seed if seed >= 0 else None)
     fil = FirmwareInTheLoop(firmware, model, rospy.get_param('~link'),

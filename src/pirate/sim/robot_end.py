@@ -2,7 +2,7 @@
 
 With a world file: the physics twin in that pipe network
 (:class:`pirate.sim.twin.TwinRobot`). Without one: the fitted single
-cross-section model (:class:`pirate.sim.model.PirateModel`). Both take the
+cross-section model (:class:`pirate.sim.fake_robot.FakeRobot`). Both take the
 three arrays and give raw Small States, so nothing else changes.
 """
 from pirate.world.network import world_path
@@ -17,5 +17,5 @@ def make_robot(world='', pipe_diameter=90, orientation=1.5707963, joints=None, s
     if world and world != NO_WORLD:
         from pirate.sim.twin import TwinRobot      # MuJoCo only when a world asks for it
         return TwinRobot(world_path(world), orientation=orientation, joints=joints, seed=seed, config=config)
-    from pirate.sim.model import PirateModel
-    return PirateModel(pipe_diameter=pipe_diameter, orientation=orientation, joints=joints, seed=seed)
+    from pirate.sim.fake_robot import FakeRobot
+    return FakeRobot(pipe_diameter=pipe_diameter, orientation=orientation, joints=joints, seed=seed)

@@ -1,6 +1,6 @@
 """A physical model of PIRATE in a pipe, standing in for the nine PICO boards.
 
-No ROS here: :class:`PirateModel` takes the three command arrays exactly as
+No ROS here: :class:`FakeRobot` takes the three command arrays exactly as
 the Mega receives them (laptop convention, SPEC 3) and produces one raw Small
 State per board (Table B.1). The guard tables are never read; every angle the
 robot reaches comes from the geometry below.
@@ -112,7 +112,7 @@ def _approach(value, target, max_step):
     return value + max(-max_step, min(max_step, target - value))
 
 
-class PirateModel(CommandLatch):
+class FakeRobot(CommandLatch):
     """The robot in a pipe: joint angles, rolls, wheel travel, in SI units."""
 
     def __init__(self, pipe_diameter=90, orientation=math.pi / 2, joints=None, seed=None):
