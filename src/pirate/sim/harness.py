@@ -1,4 +1,4 @@
-"""The whole sequencer against the simulated robot, in one process, no ROS.
+"""The whole sequencer against the simulated robot (the physics twin), in one process, no ROS.
 
 Same objects as the ROS stack (Setpoint/Control/Limit, StateAssembler,
 RobotFeed, MotionPrimitives, PirateServer), the topics replaced by direct
@@ -42,12 +42,14 @@ def view_of(snapshot, stamp):
 
 
 class SimHarness(object):
-    """Model + sequencer, wired directly. Use as a context manager.
-    ``model_args`` go to :func:`pirate.sim.robot_end.make_robot` (``world=``
-    runs the physics twin)."""
+    """Robot + sequencer, wired directly. Use as a context manager.
+    The robot is the physics twin: ``model_args`` go to
+    :func:`pirate.sim.robot_end.make_robot` (``world=``, default the straight
+    pipe of ``pipe_diameter``); a unit test that needs the fast fake passes
+    ``robot=FakeRobot(...)`` (:mod:`pirate.sim.fake_robot`) instead."""
 
-    def __init__(self, speedup=20.0, feedback_timeout=None, **model_args):
-        self.model = make_robot(**model_args)
+    def __init__(self, speedup=20.0, feedback_timeout=None, robot=None, **model_args):
+        self.model = robot if robot is not None else make_robot(**model_args)
         self.speedup = speedup
         self._lock = threading.RLock()
         self.watchdog = MegaWatchdog()

@@ -13,8 +13,8 @@ The Mega's watchdog (:mod:`pirate.sim.watchdog`) stops every board when no
 setpoint array arrives for 0.25 s (wall clock), as the firmware does.
 
 Private params: ``~world`` (a world file or a name under config/worlds/:
-the physics twin in that pipe network; empty: the fitted model),
-``~pipe_diameter`` (mm, 90 or 110, fitted model only), ``~orientation`` (rad,
+the pipe network of the physics twin; empty: the straight pipe of
+``~pipe_diameter``), ``~pipe_diameter`` (mm, 90 or 110), ``~orientation`` (rad,
 start roll, Fig 4.7), ``~joints`` (dict joint -> rad, start angles),
 ``~seed`` (sensor noise seed, -1 none), ``~rate`` (real-time factor).
 """
