@@ -1,4 +1,4 @@
-"""The simulated robot's physics (pirate.sim.fake_robot), without ROS.
+"""The fast fake robot for unit tests (pirate.sim.fake_robot: fitted, not physics), without ROS.
 
 Expected figures are the report's (SPEC 7, 10; Tables 5.2, 5.3, 6.5), never
 values read back from the model's own constants.
