@@ -20,7 +20,7 @@ from pirate import names
 from pirate.msg import ControlArray, LimitArray, SetpointArray
 from pirate.link.fil import FirmwareInTheLoop, build_native_firmware
 from pirate.link.rosserial_python_rules import serialise
-from pirate.sim.model import PirateModel
+from pirate.sim.robot_end import make_robot
 
 SETPOINT_PAYLOAD = 2 * 13          # serialised SetpointArray: how the relay tells it apart
 BOARDS = 9
@@ -43,7 +43,7 @@ def build():
 
 def start_fil(firmware):
     """Firmware in the loop on a fresh pty path, running."""
-    fil = FirmwareInTheLoop(firmware, PirateModel(),
+    fil = FirmwareInTheLoop(firmware, make_robot(),
                             os.path.join(tempfile.mkdtemp(prefix='pirate_fil_'), 'tty'))
     fil.start()
     return fil

@@ -1,4 +1,5 @@
-"""The simulated robot is calibrated against the report's simple clamp straight.
+"""The fast fake (sim/fake_robot.py, unit tests only) still reproduces the
+simple clamp straight it was fitted to (a fit, not a prediction).
 
 Runs the scripted sequence of bench/sim_calibration (one source for the
 sequence; the bench prints the figures, this test holds them to the report):

@@ -93,15 +93,15 @@ def test_a_board_silenced_mid_pab_aborts_with_the_safe_hold(board, goal, phase):
         assert wait_robot(h, lambda: h.server.primitive == phase, 20.0), h.server.primitive
         wait_robot(h, lambda: False, 0.5)                 # well into the phase
         h.silent.add(board)
-        silenced_at, odometry_at = h.robot_time, h.model.odometry_mm
+        silenced_at, odometry_at = h.robot_time, h.travel_mm()
         thread.join(30.0)
         outcome = result['outcome']
         assert outcome.status == 'aborted' and 'board %d silent' % board in outcome.message, outcome
         assert_hold_on_wire(h)
         hold_at = h.robot_time
         assert hold_at - silenced_at <= SILENT_DETECTION_ROBOT_S + 0.2, hold_at - silenced_at
-        assert wait_robot(h, lambda: abs(h.model.wheel_mm_s) < 1.0, 2.0)
-        assert abs(h.model.odometry_mm - odometry_at) <= 100.0     # 0.4 s at 100 mm/s at most
+        assert wait_robot(h, lambda: h.wheel_mm_s() < 1.0, 2.0)
+        assert abs(h.travel_mm() - odometry_at) <= 100.0     # 0.4 s at 100 mm/s at most
         reason = h.server.reserve(h.goal(**goal))
         assert reason and 'board %d silent' % board in reason, reason
 
@@ -122,13 +122,13 @@ def test_drive_without_odometry_progress_stops():
         thread, result = run_async(h, h.goal(DRIVE, distance=400.0, speed=100.0))
         assert wait_robot(h, lambda: h.server.primitive == 'drive', 20.0)
         frozen['odometry'] = real(tables.ODOMETRY_BOARD)[tables.SS_ODOMETRY]
-        frozen_at, travel_at = h.robot_time, h.model.odometry_mm
+        frozen_at, travel_at = h.robot_time, h.travel_mm()
         thread.join(30.0)
         outcome = result['outcome']
         assert outcome.status == 'aborted' and 'no odometry progress' in outcome.message, outcome
         assert h.robot_time - frozen_at <= 0.4 + 0.3, h.robot_time - frozen_at
         assert_hold_on_wire(h)
-        assert h.model.odometry_mm - travel_at <= 100.0
+        assert h.travel_mm() - travel_at <= 100.0
 
 
 def test_drive_never_runs_longer_than_its_profile_plus_margin():
@@ -172,7 +172,7 @@ def test_play_does_not_move_a_position_mode_joint():
         mapper.handle(41, 127)      # Play
         wait_robot(h, lambda: False, 1.5)
         assert h.model.running
-        assert h.model.joint_angles['rotation'] == pytest.approx(0.3, abs=0.01)
+        assert h.model.angle('rotation') == pytest.approx(0.3, abs=0.01)
 
 
 class _NoPab(object):
@@ -208,6 +208,7 @@ def test_an_impossible_reading_is_dropped(board, element, value):
 def test_the_cancel_hold_keeps_the_rotation_when_board_24_lies():
     """14.5 end to end: a bogus rotation reading never steers the hold."""
     with SimHarness(speedup=SPEEDUP) as h:
+        start = h.model.angle('rotation')
         thread, _ = run_async(h, h.goal(CLAMP_STRAIGHT))
         assert wait_robot(h, lambda: h.server.primitive == 'clamp rear', 20.0)
         real = h.model.small_state
@@ -216,7 +217,7 @@ def test_the_cancel_hold_keeps_the_rotation_when_board_24_lies():
         h.server.cancel()
         thread.join(30.0)
         wait_robot(h, lambda: False, 1.0)
-        assert abs(h.model.joint_angles['rotation']) < 0.05
+        assert abs(h.model.angle('rotation') - start) < 0.05
 
 
 # --- 14.6 every time limit independent of feedback -----------------------------------------

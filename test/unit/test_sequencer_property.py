@@ -1,6 +1,8 @@
 """Property-based (hypothesis stateful): goals, cancels, goals during cancels.
 
-Against a SimHarness, goals arrive as the ROS manager handles them: reserve
+Against a SimHarness around the fast fake robot (sim/fake_robot.py,
+fitted to the report's tables, NOT physics: a property test needs a fast
+deterministic robot, and checks the server, not the robot), goals arrive as the ROS manager handles them: reserve
 in the caller's thread (accept or refuse at once), run in a worker thread.
 Properties:
 - never more than one goal runs at a time;
@@ -18,6 +20,7 @@ from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 from hypothesis.stateful import RuleBasedStateMachine, initialize, invariant, rule, run_state_machine_as_test
 
+from pirate.sim.fake_robot import FakeRobot
 from pirate.sim.harness import SimHarness
 
 SPEEDUP = 60.0
@@ -51,7 +54,7 @@ class GoalsAndCancels(RuleBasedStateMachine):
 
     @initialize(orientation=st.sampled_from([math.pi / 2, 1.45, 0.0, math.pi]))
     def start(self, orientation):
-        self.h = SimHarness(speedup=SPEEDUP, orientation=orientation).__enter__()
+        self.h = SimHarness(speedup=SPEEDUP, robot=FakeRobot(orientation=orientation)).__enter__()
 
     def _run(self, goal, record):
         with self.lock:

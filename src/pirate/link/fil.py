@@ -4,7 +4,7 @@ pseudo-terminal (the laptop's "USB port") and simulated PICO boards.
 ::
 
     serial_node <-> pty slave (symlink ``link_path``) | pty master <-> relay
-        <-> firmware stdin/stdout ... firmware bus socket <-> SimPicoBoards(PirateModel)
+        <-> firmware stdin/stdout ... firmware bus socket <-> SimPicoBoards(twin)
 
 The relay (one thread) is the cable: it paces bytes at the baud rate (10
 bits per byte on the wire, 8N1), and can be *stalled* (nothing passes for a

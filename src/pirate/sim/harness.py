@@ -1,4 +1,4 @@
-"""The whole sequencer against the simulated robot, in one process, no ROS.
+"""The whole sequencer against the simulated robot (the physics twin), in one process, no ROS.
 
 Same objects as the ROS stack (Setpoint/Control/Limit, StateAssembler,
 RobotFeed, MotionPrimitives, PirateServer), the topics replaced by direct
@@ -15,6 +15,7 @@ from pirate.state.feed import RobotFeed, RobotView
 from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.primitives import MotionPrimitives
 from pirate.sequencer.server import PirateServer
+from pirate.sim import twin_robot
 from pirate.sim.robot_end import make_robot
 from pirate.sim.watchdog import MegaWatchdog
 from pirate.state.assembler import BadState, StateAssembler, pab_blocker
@@ -42,12 +43,14 @@ def view_of(snapshot, stamp):
 
 
 class SimHarness(object):
-    """Model + sequencer, wired directly. Use as a context manager.
-    ``model_args`` go to :func:`pirate.sim.robot_end.make_robot` (``world=``
-    runs the physics twin)."""
+    """Robot + sequencer, wired directly. Use as a context manager.
+    The robot is the physics twin: ``model_args`` go to
+    :func:`pirate.sim.robot_end.make_robot` (``world=``, default the straight
+    pipe of ``pipe_diameter``); a unit test that needs the fast fake passes
+    ``robot=FakeRobot(...)`` (:mod:`pirate.sim.fake_robot`) instead."""
 
-    def __init__(self, speedup=20.0, feedback_timeout=None, **model_args):
-        self.model = make_robot(**model_args)
+    def __init__(self, speedup=20.0, feedback_timeout=None, robot=None, **model_args):
+        self.model = robot if robot is not None else make_robot(**model_args)
         self.speedup = speedup
         self._lock = threading.RLock()
         self.watchdog = MegaWatchdog()
@@ -140,6 +143,18 @@ class SimHarness(object):
         with one robot step."""
         with self._lock:
             return self.model.ground_truth()
+
+    def travel_mm(self):
+        """True position of the rotational module along a straight pipe
+        (the world's x), mm: ground truth, tests and benchmarks only."""
+        return self.ground_truth()['poses'][twin_robot.ROTATIONAL_FRONT][0][0] * 1000.0
+
+    def wheel_mm_s(self):
+        """The fastest wheel's true surface speed, mm/s: ground truth, tests
+        and benchmarks only."""
+        with self._lock:
+            radius_mm = self.model.config['geometry']['wheel_diameter_m'] * 500.0
+            return max(abs(self.model.rate(twin_robot.wheel_joint(b))) for b in tables.DRIVE_BOARDS) * radius_mm
 
     def goal(self, name, pipe_diameter=90, distance=0.0, speed=0.0, option=0):
         """A goal object with the fields of Pirate.action's goal."""

@@ -15,7 +15,7 @@ against each other by test/unit/test_firmware_*.py). Summary::
 :class:`SimPicoBoards` plays the nine boards for firmware-in-the-loop: it
 decodes what the (native) firmware sends, latches each board's command,
 turns the latched commands back into the laptop's three arrays for
-:class:`pirate.sim.model.PirateModel`, and answers with the model's state.
+:class:`pirate.sim.twin.TwinRobot`, and answers with the model's state.
 Pure: no ROS, no I/O; bytes and times in, bytes and records out.
 """
 import collections
@@ -123,7 +123,7 @@ BoardCommand = collections.namedtuple('BoardCommand', 'mode0 mode1 setpoint0 set
 
 
 class SimPicoBoards(object):
-    """Nine simulated PICO boards on one bus, around a PirateModel.
+    """Nine simulated PICO boards on one bus, around a simulated robot (the physics twin).
 
     ``log`` records every command a board applied as (time s, board,
     'set'/'stop', BoardCommand or None): the tests measure on it.

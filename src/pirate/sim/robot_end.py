@@ -1,21 +1,30 @@
-"""Which simulated robot stands behind the node and the harness.
+"""Which simulated robot stands behind the node and the harness: the
+physics twin (:class:`pirate.sim.twin.TwinRobot`) in a pipe network.
 
-With a world file: the physics twin in that pipe network
-(:class:`pirate.sim.twin.TwinRobot`). Without one: the fitted single
-cross-section model (:class:`pirate.sim.model.PirateModel`). Both take the
-three arrays and give raw Small States, so nothing else changes.
+The world is a file or a name under config/worlds/; without one, the
+straight pipe of the given diameter (``straight_90`` / ``straight_110``).
+There is no other simulated robot: the fitted fast fake
+(:mod:`pirate.sim.fake_robot`) is built explicitly by the unit tests that
+need it, never chosen here.
 """
 from pirate.world.network import world_path
 
-#: The launch files' word for "no world: the fitted model".
-NO_WORLD = 'none'
+#: Pipe diameters (mm) with a straight world of their own.
+STRAIGHT_WORLDS = {90: 'straight_90', 110: 'straight_110'}
+
+
+def default_world(pipe_diameter):
+    """The straight pipe of ``pipe_diameter`` mm (90 or 110)."""
+    try:
+        return STRAIGHT_WORLDS[int(pipe_diameter)]
+    except (KeyError, ValueError):
+        raise ValueError('pipe_diameter %r: only %s mm have a straight world'
+                         % (pipe_diameter, ' and '.join(str(d) for d in sorted(STRAIGHT_WORLDS))))
 
 
 def make_robot(world='', pipe_diameter=90, orientation=1.5707963, joints=None, seed=None, config=None):
-    """The robot end: the twin in ``world`` if given (``config``: its
-    constants, default config/twin.yaml), else the fitted model."""
-    if world and world != NO_WORLD:
-        from pirate.sim.twin import TwinRobot      # MuJoCo only when a world asks for it
-        return TwinRobot(world_path(world), orientation=orientation, joints=joints, seed=seed, config=config)
-    from pirate.sim.model import PirateModel
-    return PirateModel(pipe_diameter=pipe_diameter, orientation=orientation, joints=joints, seed=seed)
+    """The physics twin in ``world`` (default: the straight pipe of
+    ``pipe_diameter`` mm); ``config``: its constants, default config/twin.yaml."""
+    from pirate.sim.twin import TwinRobot      # MuJoCo is imported only when a robot is built
+    return TwinRobot(world_path(world or default_world(pipe_diameter)), orientation=orientation,
+                     joints=joints, seed=seed, config=config)

@@ -1,9 +1,17 @@
-"""A physical model of PIRATE in a pipe, standing in for the nine PICO boards.
+"""A fast fake of PIRATE for unit tests: NOT physics, NOT the simulated robot.
 
-No ROS here: :class:`PirateModel` takes the three command arrays exactly as
+The simulated robot is the physics twin (:mod:`pirate.sim.twin`, chosen by
+``robot:=sim`` and ``SimHarness()``). This module is the old single
+cross-section model, kept only where a unit test needs a fast deterministic
+robot (many-roll sweeps, property tests) and behind the firmware in the
+loop (``robot:=fil``), which tests the link, not the physics. Its constants
+below were FITTED to the report's own tables (6.1, 6.2, 6.5) so that it
+reproduces them; they are not measured properties of PIRATE, and agreement
+with the report proves nothing about the robot (issue 9).
+
+No ROS here: :class:`FakeRobot` takes the three command arrays exactly as
 the Mega receives them (laptop convention, SPEC 3) and produces one raw Small
-State per board (Table B.1). The guard tables are never read; every angle the
-robot reaches comes from the geometry below.
+State per board (Table B.1). The guard tables are never read.
 
 Geometry of a clamp (report 2.4.1.1, eq 2.1, Fig 4.6)
 -----------------------------------------------------
@@ -20,8 +28,8 @@ wheels across a joint. When the robot lies at roll ``psi`` (Fig 4.7) its
 bending plane passes at d = (R - h) |cos psi| from the pipe axis and the
 wall is a chord away: D_eff = 2 sqrt(R^2 - d^2) (the chord of SPEC 2).
 
-Constants and where they come from
-----------------------------------
+Constants and what they were fitted to (not physics)
+----------------------------------------------------
 - MODULE_LENGTH 0.09 m, WHEEL_DIAMETER 0.046 m: report 2.4.1.1.
 - AXLE_PITCH 0.102 m: module length plus the 12 mm joint housing. Fitted
   once: 90 mm gives outer -0.89 / inner 0.45 rad (Table 6.5 averages
@@ -112,8 +120,8 @@ def _approach(value, target, max_step):
     return value + max(-max_step, min(max_step, target - value))
 
 
-class PirateModel(CommandLatch):
-    """The robot in a pipe: joint angles, rolls, wheel travel, in SI units."""
+class FakeRobot(CommandLatch):
+    """The fake robot (fitted, not physics): joint angles, rolls, wheel travel, in SI units."""
 
     def __init__(self, pipe_diameter=90, orientation=math.pi / 2, joints=None, seed=None):
         self.pipe_diameter_m = pipe_diameter / 1000.0

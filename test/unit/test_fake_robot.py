@@ -1,4 +1,4 @@
-"""The simulated robot's physics (pirate.sim.model), without ROS.
+"""The fast fake robot for unit tests (pirate.sim.fake_robot: fitted, not physics), without ROS.
 
 Expected figures are the report's (SPEC 7, 10; Tables 5.2, 5.3, 6.5), never
 values read back from the model's own constants.
@@ -8,7 +8,7 @@ import math
 import pytest
 
 from pirate.robot import safety, tables, units
-from pirate.sim import model as sim
+from pirate.sim import fake_robot as sim
 
 UPRIGHT = math.pi / 2
 DT = 0.02                      # one PICO sample
@@ -20,10 +20,10 @@ FULL_90, FULL_110, CUSTOM_90 = (-0.77, 0.35), (-1.25, 0.65), (-0.68, 0.33)
 
 
 class Robot(object):
-    """Drives a PirateModel through its three arrays, as the Mega would."""
+    """Drives a FakeRobot through its three arrays, as the Mega would."""
 
     def __init__(self, **kwargs):
-        self.model = sim.PirateModel(**kwargs)
+        self.model = sim.FakeRobot(**kwargs)
         self.setpoints = [0] * tables.SETPOINT_SIZE
         self.modes = [MODE['pwm']] * tables.CONTROL_SIZE
         self.limits = [safety.NO_LIMIT] * tables.LIMIT_SIZE
