@@ -212,6 +212,24 @@ def test_torque_bends_close_until_the_wall_with_effort():
     assert robot.model.small_state(26)[tables.SS_BEND_LOAD] == 0
 
 
+def test_a_compliant_inner_bend_follows_only_an_outer_driven_closed():
+    """Released after a clamp (outer still at its clamp torque) the inner bend
+    closes with the outer; after an unclamp, one cycle at torque 0 on the way
+    to a worm hold must not move it (seq_mission: the part read partly clamped)."""
+    robot = playing()
+    robot.mode('bend_iv', 'torque')
+    robot.mode('bend_iii', 'torque')
+    robot.set(bend_iv=256, bend_iii=0)
+    robot.run(2.0)
+    assert robot.angle('bend_iii') == pytest.approx(-robot.angle('bend_iv') / 2)   # pushed along
+    robot.set(bend_iv=-100, bend_iii=150)                                           # unclamp
+    robot.run(6.0)
+    opened = robot.angle('bend_iii')
+    robot.set(bend_iv=0, bend_iii=0)                  # the zeros of a worm hold, before its PWM mode
+    robot.run(DT)
+    assert robot.angle('bend_iii') == opened
+
+
 def test_torque_limit_respected():
     free = playing()
     free.mode('bend_i', 'torque')

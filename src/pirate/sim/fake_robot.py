@@ -55,7 +55,8 @@ Constants and what they were fitted to (not physics)
 - Worm gears (24:1) are self-locking: a motor with no drive (PWM 0), or a
   stopped board, holds its joint where it is. A bend in torque mode at
   setpoint 0 is the exception: the torque loop makes it compliant, and an
-  inner bend is closed by the outer one's push (``_follow_outer``). A held
+  inner bend is closed by the outer one's push while the outer is driven
+  closed (``_follow_outer``). A held
   bend keeps its spring's deflection too: a clamp held at PWM 0 (the safe
   hold) still reads as pressing the wall, as in the physics twin.
 - Spring: effort in contact = commanded torque, TORQUE_MNM_PER_COUNT mNm per
@@ -185,7 +186,10 @@ class FakeRobot(CommandLatch):
         if mode != CODE['pwm']:
             counts = self._torque_counts(name, counts)
         if counts == 0 and mode != CODE['pwm'] and name == CLAMPS[part][1]:
-            self._follow_outer(name, part)
+            if self._outer_closing(part):
+                self._follow_outer(name, part)
+            else:
+                self.effort[name] = 0.0     # compliant, and nothing pushes it
             return
         speed = BEND_MAX_RAD_S * math.tanh(abs(counts) / BEND_SETPOINT_SCALE)
         direction = -1.0 if counts > 0 else 1.0   # +setpoint closes outer (-) and opens inner
@@ -197,6 +201,19 @@ class FakeRobot(CommandLatch):
         self.joint_angles[name] = min(max(target, low), high)
         pressing = counts != 0 and (target < low or target > high)
         self.effort[name] = counts * TORQUE_MNM_PER_COUNT if pressing else 0.0
+
+    def _outer_closing(self, part):
+        """True while ``part``'s outer bend is driven closed (torque toward the wall).
+
+        Only then does it push a compliant inner bend along. Without this
+        rule an inner bend snapped to half the outer's angle in any cycle it
+        sat at torque 0 - e.g. the one cycle between the zero setpoint and
+        the PWM mode of a worm hold after Home's unclamp - and the part read
+        as partly clamped after Home (seq_mission under load).
+        """
+        outer = CLAMPS[part][0]
+        counts = self._drive(outer)
+        return counts is not None and counts > 0 and self._mode(outer) != CODE['pwm']
 
     def _follow_outer(self, name, part):
         """An inner bend at zero torque is compliant: the outer bend's push
