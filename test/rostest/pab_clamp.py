@@ -3,7 +3,7 @@
 real action client, against the physics twin (sim time), issue 10.
 
 The goal ``~goal`` succeeds with the primitives ``~expected``, its
-``~loop`` pass run ``~min_passes``..``~max_passes`` times (Table 6.2's
+``~loops`` passes each run ``~min_passes``..``~max_passes`` times (Table 6.2's
 pass, which a clamp on a side needs when it rolls the robot out of the
 straight band, notes/issue-9.md; seq_experiment's check), and leaves the
 rear in the straight region of Table 5.4 moved to ``~target`` (rad), the
@@ -15,8 +15,6 @@ rotations, which the twin does not converge yet: notes/issue-10.md.)
 Built on seq_experiment's helpers.
 """
 import math
-import random
-import time
 
 import rospy
 import rostest
@@ -47,18 +45,7 @@ class PabClampTest(SequencerTest):
         self._assert_sequence(self._assert_trace(result), rospy.get_param('~expected'))
         self.assertEqual(result.server_state, 'Idle Clamped')
         self._assert_at_target()
-        seed = int(time.time() * 1000) % 100000
-        cancel_after = random.Random(seed).uniform(0.2, float(rospy.get_param('~cancel_within')))
-        rospy.loginfo('pab_clamp: Home cancelled after %.2f sim s (seed %d)', cancel_after, seed)
-        self._send(HOME)
-        self._wait_sim(cancel_after)
-        cancelled_at = time.monotonic()
-        self.client.cancel_goal()
-        state, result, text = self._finish()
-        self.assertIn(state, (GoalStatus.PREEMPTED, GoalStatus.SUCCEEDED), 'seed %d: %s' % (seed, text))
-        if state == GoalStatus.PREEMPTED:
-            self._assert_trace(result, outcome_last='preempted')
-            self._wait(lambda: self._safe_after(cancelled_at), 'a safe setpoint array', 10.0)
+        seed = self._cancel_at_random(HOME, 'pab_clamp: Home')
         self.assertEqual(self._run(HOME).server_state, 'Idle Unclamped', 'seed %d' % seed)
 
 

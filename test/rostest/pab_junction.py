@@ -14,8 +14,6 @@ then Home leaves the robot Idle Unclamped from wherever the cancel left it.
 Built on seq_experiment's helpers.
 """
 import math
-import random
-import time
 
 import rospy
 import rostest
@@ -58,18 +56,7 @@ class PabJunctionTest(SequencerTest):
         self.assertFalse(result.junction_missing)
         self.assertEqual(result.server_state, 'Idle Clamped')
         self._assert_straight()
-        seed = int(time.time() * 1000) % 100000
-        cancel_after = random.Random(seed).uniform(0.2, float(rospy.get_param('~cancel_within')))
-        rospy.loginfo('pab_junction: T_JOINT cancelled after %.2f sim s (seed %d)', cancel_after, seed)
-        self._send(T_JOINT)
-        self._wait_sim(cancel_after)
-        cancelled_at = time.monotonic()
-        self.client.cancel_goal()
-        state, result, text = self._finish()
-        self.assertIn(state, (GoalStatus.PREEMPTED, GoalStatus.SUCCEEDED), 'seed %d: %s' % (seed, text))
-        if state == GoalStatus.PREEMPTED:
-            self._assert_trace(result, outcome_last='preempted')
-            self._wait(lambda: self._safe_after(cancelled_at), 'a safe setpoint array', 10.0)
+        seed = self._cancel_at_random(T_JOINT, 'pab_junction: T_JOINT')
         self.assertEqual(self._run(HOME).server_state, 'Idle Unclamped', 'seed %d' % seed)
 
 

@@ -5,10 +5,11 @@ One script for every seq_*.test; ``~scenario`` picks the test:
 - ``experiment``: send ``~goals`` in order, each must succeed with the
   primitives ``~expected`` (the trace in the result: names in order, each
   reached, robot times in order) and the server state ``~server_states``
-  after it; clamp goals end straight. With ``~loop`` (a re-adjust pass of
-  the report's sequence) an expected sequence holding that pass is met when
-  the pass runs ``~min_passes``..``~max_passes`` times instead of once
-  (:func:`pirate.sim.chapter6.loop_passes`: the physics twin repeats a
+  after it; clamp goals end straight. With ``~loops`` (re-adjust passes of
+  the report's sequence, in its order) an expected sequence is met when
+  each pass (a step may be 'a|b', either) runs ``~min_passes``..``~max_passes``
+  times instead of once
+  (:func:`pirate.sim.chapter6.pass_counts`: the physics twin repeats a
   re-adjust pass where its roll settles out of the straight band);
 - ``cancel``: start ``~goals[0]``, cancel after ``~cancel_after`` sim s:
   PREEMPTED, the trace's last primitive preempted, the server state after
@@ -23,6 +24,7 @@ One script for every seq_*.test; ``~scenario`` picks the test:
 Waits are on messages/conditions with deadlines; never a bare sleep.
 """
 import os
+import random
 import signal
 import subprocess
 import sys
@@ -39,7 +41,7 @@ import ready
 from actionlib_msgs.msg import GoalStatus
 
 from pirate import names
-from pirate.sim.chapter6 import loop_passes
+from pirate.sim.chapter6 import pass_counts
 from pirate.msg import PirateAction, PirateGoal, RobotState, SetpointArray
 
 UP_S = 60.0                 # wall s for the stack to come up
@@ -113,17 +115,17 @@ class SequencerTest(unittest.TestCase):
         return [s.name for s in steps]
 
     def _assert_sequence(self, trace, expected):
-        """``trace`` is ``expected``, or with ``~loop`` (when ``expected``
-        holds it) ``expected`` with that pass run ~min_passes..~max_passes times."""
-        loop = rospy.get_param('~loop', [])
-        if not loop or not any(expected[i:i + len(loop)] == loop for i in range(len(expected))):
+        """``trace`` is ``expected``, or with ``~loops`` (passes of ``expected``)
+        ``expected`` with each of those passes run ~min_passes..~max_passes times."""
+        loops = rospy.get_param('~loops', [])
+        if not loops:
             self.assertEqual(trace, expected)
             return
-        passes = loop_passes(trace, expected, loop)
+        counts = pass_counts(trace, expected, loops)
         low, high = int(rospy.get_param('~min_passes', 1)), int(rospy.get_param('~max_passes', 1))
-        self.assertTrue(passes is not None and low <= passes <= high,
-                        '%s: not %s with %s run %d..%d times' % (trace, expected, loop, low, high))
-        rospy.loginfo('%s: the re-adjust pass ran %d time(s)', expected[0], passes)
+        self.assertTrue(counts is not None and all(low <= n <= high for n in counts),
+                        '%s: not %s with each of %s run %d..%d times' % (trace, expected, loops, low, high))
+        rospy.loginfo('%s: the re-adjust passes ran %s time(s)', expected[0], counts)
 
     def _finish(self, client=None):
         client = client or self.client
@@ -137,6 +139,25 @@ class SequencerTest(unittest.TestCase):
     def _safe_after(self, since):
         with self.lock:
             return any(t >= since and is_safe(d) for t, d in self.setpoints)
+
+    def _cancel_at_random(self, spec, tag):
+        """Send ``spec``, cancel it at a random sim instant within ``~cancel_within`` s
+        (seed logged), and check what a cancel must leave: preempted with the
+        trace ending preempted and the safe hold on the wire (or it had already
+        succeeded). Returns the seed, for the caller's messages."""
+        seed = int(time.time() * 1000) % 100000
+        cancel_after = random.Random(seed).uniform(0.2, float(rospy.get_param('~cancel_within')))
+        rospy.loginfo('%s: cancelled after %.2f sim s (seed %d)', tag, cancel_after, seed)
+        self._send(spec)
+        self._wait_sim(cancel_after)
+        cancelled_at = time.monotonic()
+        self.client.cancel_goal()
+        state, result, text = self._finish()
+        self.assertIn(state, (GoalStatus.PREEMPTED, GoalStatus.SUCCEEDED), 'seed %d: %s' % (seed, text))
+        if state == GoalStatus.PREEMPTED:
+            self._assert_trace(result, outcome_last='preempted')
+            self._wait(lambda: self._safe_after(cancelled_at), 'a safe setpoint array', 10.0)
+        return seed
 
     def _assert_straight(self):
         self.assertTrue(STRAIGHT[0] <= self.state.orientation <= STRAIGHT[1], self.state.orientation)

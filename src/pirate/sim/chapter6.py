@@ -1,6 +1,6 @@
 """The report's Chapter 6 clamp runs as primitive sequences (Tables 6.1-6.3),
-and the one way a physical run may differ from them: a re-adjust pass run a
-whole number of times instead of once.
+and the one way a physical run may differ from them: a re-adjust pass (or
+each of Table 6.3's two) run a whole number of times instead of once.
 
 The physics twin settles and slips where the real robot did not in the
 report's runs (notes/issue-9.md): a clamp on a side or a custom-clamped part
@@ -24,14 +24,51 @@ CLAMP_NON_NOMINAL = (['clamp rear custom', 'rotate front', 'move front first', '
                       'move front later'] + CUSTOM_RE_ADJUST + RE_ADJUST)
 
 
-def loop_passes(executed, report, loop):
-    """n when ``executed`` is ``report`` with its first ``loop`` pass run n
-    times (n >= 0) instead of once; None when it is anything else."""
-    executed, report, loop = list(executed), list(report), list(loop)
-    start = next(i for i in range(len(report)) if report[i:i + len(loop)] == loop)
-    head, tail = report[:start], report[start + len(loop):]
-    body = executed[len(head):len(executed) - len(tail)]
-    passes, rest = divmod(len(body), len(loop))
-    if len(executed) < len(head) + len(tail) or rest or head + body + tail != executed or body != loop * passes:
+#: Any re-adjust pass of Table D.1: each clamp full or custom and the front's
+#: turn eq 5.1 or the align, as the facts at that step decide ('a|b': either).
+ANY_RE_ADJUST = ['unclamp rear partial', 'rotate rear', 'clamp rear custom|clamp rear', 'unclamp front partial',
+                 'rotate front|rotate front (align)', 'clamp front custom|clamp front']
+
+
+def _fits(steps, pattern):
+    """True when ``steps`` match ``pattern`` step by step ('a|b' matches a or b)."""
+    return len(steps) == len(pattern) and all(step in want.split('|') for step, want in zip(steps, pattern))
+
+
+def _ends_like(executed, tail):
+    """``executed`` is ``tail``, or ``tail`` cut right after a full 'clamp rear':
+    Table D.1 ends there when the front is clamped and the roll is straight
+    (the twin: a last pass that only had to re-adjust the rear)."""
+    return executed == tail or (executed[-1:] == ['clamp rear'] and tail[:len(executed)] == executed)
+
+
+def pass_counts(executed, report, loops):
+    """(n_1, ...) when ``executed`` is ``report`` with each pass of ``loops``
+    (patterns of passes of ``report``, in its order) run n_i >= 0 times
+    instead of once, ending as :func:`_ends_like` allows; None when it is
+    anything else. A pass may be followed
+    by one that begins like it (Table 6.3: the custom pass, then Table
+    6.2's), so every count a pass can have is tried, most first."""
+    executed, report = list(executed), list(report)
+    if not loops:
+        return () if _ends_like(executed, report) else None
+    loop = list(loops[0])
+    start = next(i for i in range(len(report)) if _fits(report[i:i + len(loop)], loop))
+    head, rest = report[:start], report[start + len(loop):]
+    if executed[:len(head)] != head:
         return None
-    return passes
+    body, most = executed[len(head):], 0
+    while _fits(body[most * len(loop):(most + 1) * len(loop)], loop):
+        most += 1
+    for passes in range(most, -1, -1):
+        later = pass_counts(body[passes * len(loop):], rest, loops[1:])
+        if later is not None:
+            return (passes,) + later
+    return None
+
+
+def loop_passes(executed, report, loop):
+    """n when ``executed`` is ``report`` with its pass ``loop`` run n times
+    (n >= 0) instead of once; None when it is anything else."""
+    counts = pass_counts(executed, report, [loop])
+    return None if counts is None else counts[0]
