@@ -10,6 +10,10 @@ Each test/rostest/panel_*.test holds one scenario as the ``~steps`` param
                                  |angle - angle at the step| >= min_rad in time
   expect_still: {joints, tol_rad, for_s}
                                  none of them moves more than tol_rad for for_s
+  wait_still: {joints, tol_rad, for_s, timeout_s}
+                                 they come to rest: none moves more than
+                                 tol_rad for for_s, within timeout_s (a robot
+                                 with a body settles after a stop)
   wait_led: {button, lit, timeout_s}     the Mapper lit / cleared an LED
   expect_led_stays: {button, lit, for_s} and it does not change
   wait_log: {contains, timeout_s}        the manager told the operator
@@ -112,7 +116,7 @@ class PanelScenario(unittest.TestCase):
         deadline = time.monotonic() + for_s
         while time.monotonic() < deadline and not rospy.is_shutdown():
             with self.lock:
-                self.assertTrue(condition(), what)
+                self.assertTrue(condition(), what() if callable(what) else what)
             time.sleep(POLL_S)
 
     def _send(self, channel, value):
@@ -133,12 +137,29 @@ class PanelScenario(unittest.TestCase):
         self._until(lambda: abs(self.angles[joint] - start) >= arg['min_rad'],
                     arg.get('timeout_s', 15), '%s to move %.2f rad' % (joint, arg['min_rad']))
 
-    def step_expect_still(self, arg):
+    def _moved(self, joints, tol_rad):
+        """A callable: the joints that moved more than ``tol_rad`` (rad, with their change) since now."""
         with self.lock:
-            start = {j: self.angles[j] for j in arg['joints']}
-        moved = lambda: [j for j in start if abs(self.angles[j] - start[j]) > arg['tol_rad']]
-        self._during(lambda: not moved(), arg['for_s'],
-                     'joints moved: %s' % arg['joints'])
+            start = {j: self.angles[j] for j in joints}
+        return lambda: ['%s %+.3f' % (j, self.angles[j] - start[j]) for j in start
+                        if abs(self.angles[j] - start[j]) > tol_rad]
+
+    def step_expect_still(self, arg):
+        moved = self._moved(arg['joints'], arg['tol_rad'])
+        self._during(lambda: not moved(), arg['for_s'], lambda: 'joints moved: %s' % moved())
+
+    def step_wait_still(self, arg):
+        deadline = time.monotonic() + arg.get('timeout_s', 15)
+        while time.monotonic() < deadline and not rospy.is_shutdown():
+            moved, quiet_until = self._moved(arg['joints'], arg['tol_rad']), time.monotonic() + arg['for_s']
+            while time.monotonic() < quiet_until:
+                with self.lock:
+                    if moved():
+                        break
+                time.sleep(POLL_S)
+            else:
+                return
+        self.fail('the robot did not come to rest within %.1f s' % arg.get('timeout_s', 15))
 
     def step_wait_led(self, arg):
         self._until(lambda: self.leds.get(arg['button']) == arg['lit'], arg.get('timeout_s', 10),
