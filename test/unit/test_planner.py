@@ -212,9 +212,18 @@ def test_a_route_the_server_cannot_run_yet_is_refused_before_anything_moves():
     at its junction step, by name; once the PAB exists the same route passes."""
     route_plan = run(world(BEND_LEFT, {'pit': 300, 'target': 3000}), 'pit', 'target')
     with pytest.raises(planner.PlanError, match=r"step 3 \(MITRE_BEND LEFT, mitre_1\): the Pirate Server cannot "
-                                                r"run MITRE_BEND yet"):
-        planner.check_runnable(route_plan, built=lambda pab: pab != 'MITRE_BEND')
-    planner.check_runnable(route_plan, built=lambda pab: True)
+                                                r"run MITRE_BEND LEFT yet"):
+        planner.check_runnable(route_plan, built=lambda pab, option=None: pab != 'MITRE_BEND')
+    planner.check_runnable(route_plan, built=lambda pab, option=None: True)
+
+
+def test_a_turn_the_junction_pab_does_not_take_yet_is_refused_by_the_real_server_table():
+    """The junction PABs exist but take no turn yet (issue 10): the planner asks
+    the server's own table with the direction, so the route stops here, not at the bend."""
+    route_plan = run(world(BEND_LEFT, {'pit': 300, 'target': 3000}), 'pit', 'target')
+    assert goals.built('MITRE_BEND') and not goals.built('MITRE_BEND', 'LEFT')
+    with pytest.raises(planner.PlanError, match=r"cannot run MITRE_BEND LEFT yet"):
+        planner.check_runnable(route_plan)
 
 
 def test_a_junction_direction_the_goal_cannot_carry_is_refused(monkeypatch):
@@ -222,11 +231,11 @@ def test_a_junction_direction_the_goal_cannot_carry_is_refused(monkeypatch):
     net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'mitre', 'turn': 'down'},
                  {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 2500})
     with pytest.raises(planner.PlanError, match="MITRE_BEND takes LEFT / RIGHT, not DOWN"):
-        planner.check_runnable(run(net, 'a', 'b'), built=lambda pab: True)
+        planner.check_runnable(run(net, 'a', 'b'), built=lambda pab, option=None: True)
 
 
 def test_run_mission_route_refuses_a_route_the_server_cannot_run_before_sending_anything(monkeypatch, capsys):
     from pirate.supervisory import mission_node
-    monkeypatch.setattr(goals, 'built', lambda pab: pab != 'MITRE_BEND')
+    monkeypatch.setattr(goals, 'built', lambda pab, option=None: pab != 'MITRE_BEND')
     assert mission_node.main(['run_mission', '--route', 'inspection_90', 'launch_pit', 'target']) == 2
-    assert 'cannot run MITRE_BEND yet' in capsys.readouterr().err
+    assert 'cannot run MITRE_BEND LEFT yet' in capsys.readouterr().err

@@ -28,7 +28,6 @@ from pirate.supervisory.executive import LEVELS, WAIT_CONFIRM, WAIT_RESUME
 MissionButton = collections.namedtuple('MissionButton', 'channel control function command')
 #: The executive's words a button may send (pirate.supervisory.executive.Executive.command).
 COMMANDS = ('confirm', 'pause', 'resume') + tuple('level %s' % level for level in LEVELS)
-_PAB_NAMES = {code: name for name, code in goals.CODES.items()}
 #: 10 Hz ticks per half period of the continuous blink of a waiting step (2.5 Hz).
 BLINK_HALF_TICKS = 2
 
@@ -173,4 +172,4 @@ def _direction(distance_mm):
 def goal_key(goal):
     """What identifies a panel :data:`pirate.panel.config.Goal` for the
     operator, as a mission step is named: PAB name, option name, direction."""
-    return (_PAB_NAMES[goal.name], goals.OPTION_NAMES[goal.option], _direction(goal.distance))
+    return (goals.CODE_NAMES[goal.name], goals.OPTION_NAMES[goal.option], _direction(goal.distance))

@@ -191,7 +191,9 @@ def check_runnable(route_plan, built=None):
     """Raise :class:`PlanError` naming the first step the Pirate Server cannot
     run (a PAB it does not have yet, or an option its goal cannot carry),
     so that a mission through it is refused before the robot moves rather
-    than stopped at that junction. ``built(pab)``: default pirate.sequencer.goals.built."""
+    than stopped at that junction (a junction PAB that does not take that
+    direction yet included). ``built(pab, option)``: default
+    pirate.sequencer.goals.built."""
     built = built or goals.built
     for number, step in enumerate(route_plan.steps, 1):
         where = 'step %d (%s%s%s)' % (number, step.pab, ' %s' % step.option if step.option else '',
@@ -200,6 +202,6 @@ def check_runnable(route_plan, built=None):
             raise PlanError('%s: the Pirate Server\'s %s takes %s, not %s; the robot cannot take this route'
                             % (where, step.pab, ' / '.join(goals.PAB_OPTIONS.get(step.pab, ('no option',))),
                                step.option))
-        if not built(step.pab):
-            raise PlanError('%s: the Pirate Server cannot run %s yet; the robot cannot take this route'
-                            % (where, step.pab))
+        if not built(step.pab, step.option or None):
+            raise PlanError('%s: the Pirate Server cannot run %s%s yet; the robot cannot take this route'
+                            % (where, step.pab, ' %s' % step.option if step.option else ''))
