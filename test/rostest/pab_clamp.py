@@ -18,7 +18,6 @@ import math
 
 import rospy
 import rostest
-from actionlib_msgs.msg import GoalStatus
 
 from seq_experiment import SequencerTest
 
@@ -32,12 +31,6 @@ class PabClampTest(SequencerTest):
     def _assert_at_target(self):
         offset = self.state.orientation - float(rospy.get_param('~target'))
         self.assertTrue(STRAIGHT_BAND[0] <= offset <= STRAIGHT_BAND[1], self.state.orientation)
-
-    def _run(self, spec):
-        self._send(spec)
-        state, result, text = self._finish()
-        self.assertEqual(state, GoalStatus.SUCCEEDED, '%s: %s' % (spec, text))
-        return result
 
     def test_scenario(self):
         spec = rospy.get_param('~goal')

@@ -20,7 +20,7 @@ import rostest
 from actionlib_msgs.msg import GoalStatus
 from pirate.msg import PirateGoal
 
-from seq_experiment import SequencerTest, make_goal
+from seq_experiment import SequencerTest
 
 CLAMP = {'name': PirateGoal.CLAMP_STRAIGHT}
 T_JOINT = {'name': PirateGoal.T_JOINT, 'option': PirateGoal.STRAIGHT}
@@ -30,13 +30,6 @@ MITRE_BEND = {'name': PirateGoal.MITRE_BEND, 'option': PirateGoal.DOWN}
 
 class PabJunctionTest(SequencerTest):
     """Clamp, cross a T-joint, cancel the next at random, Home."""
-
-    def _run(self, spec):
-        self.server_states = set()
-        self.client.send_goal(make_goal(spec), feedback_cb=lambda fb: self.server_states.add(fb.server_state))
-        state, result, text = self._finish()
-        self.assertEqual(state, GoalStatus.SUCCEEDED, '%s: %s' % (spec, text))
-        return result
 
     def _assert_mitre_bend_refused(self):
         """MITRE_BEND takes no direction yet: refused at once with the reason, no junction in the result."""

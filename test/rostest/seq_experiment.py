@@ -102,6 +102,15 @@ class SequencerTest(unittest.TestCase):
         """Send a goal (the trace comes back in the result)."""
         (client or self.client).send_goal(make_goal(spec))
 
+    def _run(self, spec):
+        """Send ``spec``, wait for it, require SUCCEEDED; return its result.
+        The server states its feedback named are in ``self.server_states``."""
+        self.server_states = set()
+        self.client.send_goal(make_goal(spec), feedback_cb=lambda fb: self.server_states.add(fb.server_state))
+        state, result, text = self._finish()
+        self.assertEqual(state, GoalStatus.SUCCEEDED, '%s: %s' % (spec, text))
+        return result
+
     def _assert_trace(self, result, outcome_last='reached'):
         """The result's trace: robot times in order, every primitive but the last reached."""
         steps = result.primitives
@@ -172,9 +181,7 @@ class SequencerTest(unittest.TestCase):
         expected = rospy.get_param('~expected')
         server_states = rospy.get_param('~server_states', [None] * len(goals))
         for spec, primitives, server_state in zip(goals, expected, server_states):
-            self._send(spec)
-            state, result, text = self._finish()
-            self.assertEqual(state, GoalStatus.SUCCEEDED, '%s: %s' % (spec, text))
+            result = self._run(spec)
             self.assertTrue(result.success, result.message)
             self._assert_sequence(self._assert_trace(result), primitives)
             if server_state is not None:
