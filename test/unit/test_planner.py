@@ -75,11 +75,44 @@ def test_the_way_back_takes_the_bend_rear_first_after_reclamping():
     assert back[3].end_m == pytest.approx(0.3)
 
 
-@pytest.mark.parametrize('side, clamp', [('right', ('CLAMP_STRAIGHT', None)), ('up', ('CLAMP_SIDEWAYS', 'LEFT'))])
-def test_straight_through_a_tee_never_presses_toward_its_open_side(side, clamp):
-    net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': side},
-                 {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 2500})
-    assert pabs(run(net, 'a', 'b'))[:3] == [clamp, ('DRIVE', None), ('T_JOINT', 'STRAIGHT')]
+def tee_run(side):
+    return world([{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': side},
+                  {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 2500})
+
+
+@pytest.mark.parametrize('side, clamp', [('up', ('CLAMP_STRAIGHT', None)), ('right', ('CLAMP_SIDEWAYS', 'RIGHT')),
+                                         ('left', ('CLAMP_SIDEWAYS', 'LEFT'))])
+def test_straight_through_a_tee_clamps_with_the_front_v_facing_its_open_side(side, clamp):
+    """The PAB senses the T-joint only with the V's apex toward the hole
+    (notes/issue-10.md): upright for a hole above, on the side of a side hole."""
+    assert pabs(run(tee_run(side), 'a', 'b'))[:3] == [clamp, ('DRIVE', None), ('T_JOINT', 'STRAIGHT')]
+
+
+def test_straight_through_a_tee_open_downward_is_refused_no_clamp_faces_it():
+    with pytest.raises(planner.PlanError, match=r'tee_1: a T-joint open down cannot be gone straight through'):
+        run(tee_run('down'), 'a', 'b')
+
+
+def test_the_clamp_the_planner_asks_for_a_tee_straight_is_the_one_the_pab_starts_from():
+    """T_JOINT STRAIGHT declares it starts clamped straight (pabs/junction.py):
+    through a tee open upward the route runs; open to a side the route needs
+    a sideways clamp the PAB does not start from, refused before anything moves."""
+    planner.check_runnable(run(tee_run('up'), 'a', 'b'))
+    with pytest.raises(planner.PlanError, match=r"step 3 \(T_JOINT STRAIGHT, tee_1\): the route holds clamp "
+                                                r"sideways RIGHT there \(the front V facing right\), but T_JOINT "
+                                                r"STRAIGHT starts from clamp straight only"):
+        planner.check_runnable(run(tee_run('right'), 'a', 'b'))
+
+
+def test_a_pab_that_declares_the_sideways_start_lets_the_route_through(monkeypatch):
+    """The planner reads the PAB's own declaration: when the junction PAB
+    starts T_JOINT STRAIGHT from a sideways clamp too, the route runs."""
+    from pirate.sequencer.pabs import codes, junction
+    tee = junction.JUNCTIONS[codes.T_JOINT]
+    options = dict(tee[3])
+    options[codes.STRAIGHT] = ('straight', ('straight', 'sideways RIGHT'))
+    monkeypatch.setitem(junction.JUNCTIONS, codes.T_JOINT, tee[:3] + (options,))
+    planner.check_runnable(run(tee_run('right'), 'a', 'b'))
 
 
 def test_entering_a_tee_through_its_branch_turns_toward_its_side():
@@ -101,12 +134,13 @@ def test_a_drive_longer_than_one_goal_may_go_is_split_evenly():
     assert sum(drives) == pytest.approx(11000.0)
 
 
-def test_two_junctions_in_a_row_reclamp_between_them_only_when_needed():
+@pytest.mark.parametrize('side, reclamp', [('up', []), ('left', ['CLAMP_SIDEWAYS'])])
+def test_two_junctions_in_a_row_reclamp_between_them_only_when_needed(side, reclamp):
     net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'mitre', 'turn': 'up'},
-                 {'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': 'left'},
+                 {'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': side},
                  {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 4000})
     assert [p for p, _ in pabs(run(net, 'a', 'b'))] == [
-        'CLAMP_STRAIGHT', 'DRIVE', 'MITRE_BEND', 'DRIVE', 'T_JOINT', 'DRIVE', 'HOME']
+        'CLAMP_STRAIGHT', 'DRIVE', 'MITRE_BEND'] + reclamp + ['DRIVE', 'T_JOINT', 'DRIVE', 'HOME']
 
 
 def test_junctions_are_named_in_path_order():
@@ -152,7 +186,7 @@ def test_a_junction_the_robot_cannot_take_in_that_diameter_is_refused():
 @pytest.mark.parametrize('kind, direction, side, expected', [
     ('mitre', 'left', None, ('CLAMP_SIDEWAYS', 'LEFT')), ('mitre', 'right', None, ('CLAMP_SIDEWAYS', 'RIGHT')),
     ('mitre', 'up', None, ('CLAMP_STRAIGHT', None)), ('mitre', 'down', None, ('CLAMP_STRAIGHT', None)),
-    ('tee', 'straight', 'left', ('CLAMP_STRAIGHT', None)), ('tee', 'straight', 'down', ('CLAMP_SIDEWAYS', 'LEFT')),
+    ('tee', 'straight', 'left', ('CLAMP_SIDEWAYS', 'LEFT')), ('tee', 'straight', 'up', ('CLAMP_STRAIGHT', None)),
 ])
 def test_required_clamp_puts_the_bending_plane_in_the_turn(kind, direction, side, expected):
     assert tuple(required_clamp(kind, direction, side)) == expected

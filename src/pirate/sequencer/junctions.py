@@ -2,21 +2,32 @@
 
 "Depending on the direction desired (left or right) and the orientation of
 the bend itself, the clamping required beforehand could be straight or
-sideways (left or right)." The rule behind it: the robot steers into a new
-pipe by bending its body, and it bends only in the plane of its V's (the
-bending plane, vertical when clamped straight, horizontal when clamped
-sideways). So
+sideways (left or right)." Two rules behind it:
 
-- a turn left or right needs the bending plane horizontal: clamp sideways,
-  lying toward the turn (LEFT: orientation pi, RIGHT: 0, Fig 4.7);
-- a turn up or down needs it vertical: clamp straight;
-- going straight through a T-joint, the V's must not press toward the open
-  side (there is no wall there): straight when the open side is left or
-  right, sideways when it is up or down.
+- **steering**: the robot steers into a new pipe by bending its body, and
+  it bends only in the plane of its V's (the bending plane, vertical when
+  clamped straight, horizontal when clamped sideways). A turn left or right
+  needs the bending plane horizontal: clamp sideways, lying toward the turn
+  (LEFT: orientation pi, RIGHT: 0, Fig 4.7); a turn up or down needs it
+  vertical: clamp straight;
+- **sensing**: going straight through a T-joint the junction PAB senses the
+  open side only with the front V's apex pressing toward it (its spring
+  unloads where the wall goes away, pirate.sequencer.junction_sensing;
+  notes/issue-10.md: upright below a hole above, lying on a side next to a
+  hole on that side; with the V facing away nothing is sensed and the goal
+  ends junction_missing). So clamp with the apex toward the open side:
+  straight (apex up) for a side open upward, sideways toward a side open
+  left or right. No clamp of the PABs faces down (that would be upside
+  down): a T-joint open downward cannot be gone straight through.
 
 Directions are relative to the pipe before the junction, as the world
 format (pirate.world.network) and the Pirate.action options give them.
-Pure; the planner and the junction PABs share it.
+
+The planner asks :func:`required_clamp`; whether the junction PAB starts
+from that clamp is the PAB's own declaration (its ``JUNCTIONS`` table),
+read by :func:`pab_start_clamps`, so a route the PAB cannot start is
+refused before the robot moves (pirate.supervisory.planner.check_runnable).
+Pure.
 """
 import collections
 
@@ -24,6 +35,9 @@ Clamp = collections.namedtuple('Clamp', 'pab side')
 
 STRAIGHT_CLAMP = Clamp('CLAMP_STRAIGHT', None)
 TURNS = ('left', 'right', 'up', 'down')
+#: The clamp whose front V's apex faces each open side of a T-joint (sensing rule).
+FACING_OPEN_SIDE = {'up': STRAIGHT_CLAMP, 'left': Clamp('CLAMP_SIDEWAYS', 'LEFT'),
+                    'right': Clamp('CLAMP_SIDEWAYS', 'RIGHT')}
 
 
 def required_clamp(kind, direction, open_side=None):
@@ -31,12 +45,29 @@ def required_clamp(kind, direction, open_side=None):
 
     ``kind``: 'mitre' or 'tee'; ``direction``: one of :data:`TURNS` or
     'straight' (tee only); ``open_side``: the tee's open side when going
-    straight through it.
+    straight through it. ValueError with the reason when none serves.
     """
     if direction in ('left', 'right'):
         return Clamp('CLAMP_SIDEWAYS', direction.upper())
     if direction in ('up', 'down'):
         return STRAIGHT_CLAMP
     if kind == 'tee' and direction == 'straight':
-        return Clamp('CLAMP_SIDEWAYS', 'LEFT') if open_side in ('up', 'down') else STRAIGHT_CLAMP
+        if open_side not in FACING_OPEN_SIDE:
+            raise ValueError('a T-joint open %s cannot be gone straight through: no clamp turns the front '
+                             'V\'s apex toward it, so the junction PAB cannot sense it' % open_side)
+        return FACING_OPEN_SIDE[open_side]
     raise ValueError('a %s cannot be taken %r' % (kind, direction))
+
+
+def label(clamp):
+    """The junction PAB's name for ``clamp`` ('straight', 'sideways LEFT', ...)."""
+    return 'straight' if clamp == STRAIGHT_CLAMP else 'sideways %s' % clamp.side
+
+
+def pab_start_clamps(pab, option):
+    """Names (:func:`label`) of the clamps the junction PAB ``pab`` (goal
+    name, 'T_JOINT' or 'MITRE_BEND') declares it starts ``option`` (an
+    option name, e.g. 'STRAIGHT') from; () for an option it has none for."""
+    from pirate.sequencer import goals                  # here: the PAB module may import this one
+    from pirate.sequencer.pabs.junction import JUNCTIONS
+    return JUNCTIONS[goals.CODES[pab]][3].get(goals.OPTIONS.get(option), (None, ()))[1]

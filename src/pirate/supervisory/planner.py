@@ -22,7 +22,7 @@ Drive limit (config/sequencer.yaml) are passed in.
 import collections
 
 from pirate.sequencer import goals
-from pirate.sequencer.junctions import STRAIGHT_CLAMP, required_clamp
+from pirate.sequencer.junctions import STRAIGHT_CLAMP, label, pab_start_clamps, required_clamp
 
 #: One junction of the map, as the route meets it.
 Junction = collections.namedtuple('Junction', 'name kind direction open_side entry_m exit_m diameter_mm')
@@ -121,8 +121,11 @@ class _Planner(object):
 
     def _take(self, junction, sign, came_from):
         self._check_takeable(junction)
-        self._clamp(required_clamp(junction.kind, junction.direction, junction.open_side),
-                    'for %s (%s %s)' % (junction.name, junction.kind, junction.direction))
+        try:
+            clamp = required_clamp(junction.kind, junction.direction, junction.open_side)
+        except ValueError as why:
+            raise PlanError('%s: %s' % (junction.name, why))
+        self._clamp(clamp, 'for %s (%s %s)' % (junction.name, junction.kind, junction.direction))
         robot = self.settings['robot']
         lead_mm = robot['front_mm'] if sign > 0 else robot['rear_mm']
         edge_m = junction.entry_m if sign > 0 else junction.exit_m
@@ -189,7 +192,8 @@ def route_of(lines):
 
 def check_runnable(route_plan, built=None):
     """Raise :class:`PlanError` naming the first step the Pirate Server cannot
-    run (a PAB it does not have yet, or an option its goal cannot carry),
+    run (a PAB it does not have yet, an option its goal cannot carry, or a
+    junction PAB that does not start from the clamp the route holds there),
     so that a mission through it is refused before the robot moves rather
     than stopped at that junction (a junction PAB that does not take that
     direction yet included). ``built(pab, option)``: default
@@ -205,3 +209,17 @@ def check_runnable(route_plan, built=None):
         if not built(step.pab, step.option or None):
             raise PlanError('%s: the Pirate Server cannot run %s%s yet; the robot cannot take this route'
                             % (where, step.pab, ' %s' % step.option if step.option else ''))
+        _check_start_clamp(where, step)
+
+
+def _check_start_clamp(where, step):
+    """A junction step starts from the clamp the route holds there
+    (:func:`required_clamp`); the junction PAB must declare it starts from it."""
+    if step.junction is None or step.holds is None:
+        return
+    starts = pab_start_clamps(step.pab, step.option)
+    if label(step.holds) not in starts:
+        raise PlanError('%s: the route holds clamp %s there (the front V facing %s), but %s %s starts from '
+                        'clamp %s only; the robot cannot take this route yet'
+                        % (where, label(step.holds), step.junction.open_side or 'the turn', step.pab,
+                           step.option, ' or '.join(starts) or 'nothing'))
