@@ -13,7 +13,7 @@ import yaml
 from pirate import paths
 from pirate.supervisory import executive as ex
 from pirate.supervisory import planner
-from pirate.supervisory.localiser import Localiser
+from pirate.supervisory.localiser import Localiser, sensed_at_m
 from pirate.world import network
 
 with open(os.path.join(paths.CONFIG_DIR, 'supervisory.yaml')) as _f:
@@ -63,8 +63,7 @@ class FakeRobot(object):
         found = None
         if step.junction is not None:
             sign = 1 if step.distance_mm > 0 else -1
-            edge = (step.junction.entry_m - SETTINGS['robot']['front_mm'] / 1000.0 if sign > 0
-                    else step.junction.exit_m + SETTINGS['robot']['rear_mm'] / 1000.0) + self.shift_m
+            edge = sensed_at_m(step.junction, sign, SETTINGS['robot']) + self.shift_m
             if abs(edge - self.true_m) * 1000 > abs(step.distance_mm):
                 return ex.Report('aborted', 'no junction within %.0f mm' % abs(step.distance_mm),
                                  self.odometry() + step.distance_mm, None, True)

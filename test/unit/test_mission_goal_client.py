@@ -120,9 +120,19 @@ def test_cancel_from_another_thread_reaches_the_running_goal():
 def test_the_executive_retries_a_timeout_and_never_a_recall(status, seen):
     from pirate.supervisory.goal_client import Ending
     result = PirateResult(message='m') if status == 'succeeded' else None
-    report = executive_node.report(Ending(status, 'm', result), 12.5)
+    report = executive_node.report(Ending(status, 'm', result), 12.5, 2.5)
     assert report.status == seen and report.odometry_mm == 12.5 and report.message == 'm'
     assert report.junction_missing is False
+
+
+@pytest.mark.parametrize('found, at', [(416.0, 1416.0), (float('nan'), None)])
+def test_the_junction_is_placed_in_the_robots_odometry_not_the_goals(found, at):
+    """The result's junction_odometry counts from the goal's start; the
+    localiser works in the robot's odometry (the goal started at 1000 mm)."""
+    from pirate.supervisory.goal_client import Ending
+    result = PirateResult(message='m', junction_odometry=found)
+    report = executive_node.report(Ending('succeeded', 'm', result), 1900.0, 1000.0)
+    assert report.junction_odometry_mm == at
 
 
 class Server(object):

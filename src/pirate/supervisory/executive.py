@@ -27,6 +27,7 @@ provides one over actionlib. Operator calls (:meth:`pause`, :meth:`resume`, :met
 :meth:`confirm`, :meth:`set_level`) come from any thread.
 """
 import collections
+import math
 import threading
 
 from pirate.supervisory.localiser import MapMismatch
@@ -38,6 +39,18 @@ LEVELS = (FULL, CONFIRM, MANUAL)
 #: odometry (mm) at its end; where a junction PAB found its junction (mm of
 #: odometry) or None; ``junction_missing`` when it searched and found none.
 Report = collections.namedtuple('Report', 'status message odometry_mm junction_odometry_mm junction_missing')
+
+
+def found_at(start_odometry_mm, found_mm):
+    """The odometry (mm) where a junction PAB found its junction, for a
+    :data:`Report`: the Pirate result's ``junction_odometry`` counts from the
+    goal's start (``start_odometry_mm``, the robot's odometry when it was
+    sent); None when it found none (NaN or None)."""
+    if found_mm is None or math.isnan(found_mm) or start_odometry_mm is None:
+        return None
+    return start_odometry_mm + found_mm
+
+
 #: Progress for the operator.
 #: ``option`` and ``distance_mm`` name the PAB exactly (the panel blinks its button).
 Progress = collections.namedtuple('Progress', 'step steps pab option distance_mm along_m time_left_s level '

@@ -19,7 +19,6 @@ and as millimetres along the path (``/pirate/mission/along_mm``), 5 Hz.
 Params (private): ``~goal_timeout`` (s of robot time one PAB may take
 before the executive cancels it, default 600).
 """
-import math
 import threading
 
 import actionlib
@@ -71,7 +70,8 @@ class ActionRobot(object):
                              self.odometry_mm, None, False)
         goal = PirateGoal(name=goals.CODES[step.pab], pipe_diameter=step.pipe_diameter,
                           distance=step.distance_mm, speed=step.speed_mm_s, option=option)
-        return report(self.goals.run(goal), self.odometry_mm)
+        start_mm = self.odometry_mm
+        return report(self.goals.run(goal), self.odometry_mm, start_mm)
 
     def clamped(self):
         """The Pirate Server's sensed state now: Idle Clamped or not."""
@@ -85,14 +85,16 @@ class ActionRobot(object):
         self.goals.cancel()
 
 
-def report(ending, odometry_mm):
+def report(ending, odometry_mm, start_odometry_mm):
     """The executive's :data:`ex.Report` of a goal's :data:`Ending`: a goal
     that ran out of time counts as aborted (the policy may retry it), one
-    recalled before it started as rejected (a retry cannot help)."""
+    recalled before it started as rejected (a retry cannot help). The
+    junction's place counts from ``start_odometry_mm``, the odometry when the
+    goal was sent."""
     status = {'timeout': 'aborted', 'interrupted': 'aborted', 'recalled': 'rejected'}.get(ending.status,
                                                                                           ending.status)
-    found = getattr(ending.result, 'junction_odometry', float('nan'))
-    return ex.Report(status, ending.message, odometry_mm, None if math.isnan(found) else found,
+    found = getattr(ending.result, 'junction_odometry', None)
+    return ex.Report(status, ending.message, odometry_mm, ex.found_at(start_odometry_mm, found),
                      bool(getattr(ending.result, 'junction_missing', False)))
 
 

@@ -13,7 +13,7 @@ import collections
 
 from pirate.sequencer import goals
 from pirate.sequencer.clamp_state import IDLE_CLAMPED
-from pirate.supervisory.executive import Report
+from pirate.supervisory.executive import Report, found_at
 
 #: One goal run: the step sent, how it ended, robot seconds it took.
 Goal = collections.namedtuple('Goal', 'step status message seconds')
@@ -33,14 +33,13 @@ class HarnessRobot(object):
     def run(self, step):
         goal = self.h.goal(goals.CODES[step.pab], pipe_diameter=step.pipe_diameter, distance=step.distance_mm,
                            speed=step.speed_mm_s, option=goals.OPTIONS[step.option or 'NONE'])
-        started = self.h.robot_time
+        started, start_mm = self.h.robot_time, self.odometry_mm()
         refused, outcome = self.h.execute(goal)
         if refused:
             report = Report('rejected', refused, self.odometry_mm(), None, False)
         else:
             report = Report(outcome.status, outcome.message, self.odometry_mm(),
-                            getattr(outcome, 'junction_odometry', None),
-                            bool(getattr(outcome, 'junction_missing', False)))
+                            found_at(start_mm, outcome.junction_odometry), bool(outcome.junction_missing))
         self.goals.append(Goal(step, report.status, report.message, self.h.robot_time - started))
         return report
 

@@ -48,14 +48,12 @@ class Localiser(object):
         return self.anchor_m + (odometry_mm - self.anchor_odometry) / 1000.0
 
     def junction_found(self, junction, odometry_mm, sign):
-        """A junction PAB detected ``junction`` (its leading end lost the wall)
-        at ``odometry_mm``, driving forward (``sign`` 1) or back (-1).
+        """A junction PAB detected ``junction`` (its leading V lost the wall)
+        at ``odometry_mm`` (the robot's odometry then, not the PAB's
+        distance from its start), driving forward (``sign`` 1) or back (-1).
         Re-anchor there, or raise :class:`MapMismatch`."""
         estimated = self.update(odometry_mm)
-        if sign > 0:
-            mapped = junction.entry_m - self._robot['front_mm'] / 1000.0
-        else:
-            mapped = junction.exit_m + self._robot['rear_mm'] / 1000.0
+        mapped = sensed_at_m(junction, sign, self._robot)
         allowed = self._tolerance_m + self._drift * abs(estimated - self.anchor_m)
         if abs(estimated - mapped) > allowed:
             raise MapMismatch('%s found with the robot at %.0f mm, the map has it at %.0f mm '
@@ -69,3 +67,13 @@ class Localiser(object):
     def junction_missing(junction, searched_mm):
         """The map's junction was not found within the search distance."""
         return MapMismatch('%s not found within %.0f mm of where the map has it' % (junction.name, searched_mm))
+
+
+def sensed_at_m(junction, sign, robot):
+    """Where the robot's middle is (m along) when a junction PAB senses
+    ``junction`` driving forward (``sign`` 1: the front V's apex reaches its
+    entry, ``robot['sense_front_mm']`` ahead of the middle) or back (-1: the
+    rear V's apex reaches its exit). ``robot``: config/supervisory.yaml's row."""
+    if sign > 0:
+        return junction.entry_m - robot['sense_front_mm'] / 1000.0
+    return junction.exit_m + robot['sense_rear_mm'] / 1000.0
