@@ -8,7 +8,9 @@ plan can be printed and checked (``rosrun pirate plan_mission MAP FROM TO``):
 - clamp before each junction the way the junction needs
   (:func:`pirate.sequencer.junctions.required_clamp`), and once at the start;
 - drive each segment by distance, stopping the leading end ``approach_mm``
-  before the junction (drives longer than one Drive goal may go are split);
+  before the junction (drives longer than one Drive goal may go are split),
+  at the mission's speed; every other PAB at its own (speed 0: a junction
+  PAB searches and crosses at the speed it was measured at);
 - take each mitre bend / T-joint in the direction the route goes; backwards
   (rear first) on the way back, with a negative search distance;
 - drive on to the target; home at the end.
@@ -100,7 +102,7 @@ class _Planner(object):
 
     def add(self, pab, option, distance_mm, start_m, end_m, junction, note):
         diameter = round(self.network.diameter_at(start_m) * 1000)
-        self.steps.append(Step(pab, option, distance_mm, self.speed if pab != 'HOME' else 0.0,
+        self.steps.append(Step(pab, option, distance_mm, self.speed if pab == 'DRIVE' else 0.0,
                                diameter, start_m, end_m, junction, note, self.clamp))
 
     def leg(self, name_a, a, name_b, b):
