@@ -34,6 +34,7 @@ class FakeRobot(object):
         self.goals = []
         self.hold_step = hold_step            # a pab that blocks until cancelled (once)
         self.clamped_after_cancel = False     # the server's word after that cancel
+        self.sensed_then_moved_mm = None      # a held junction step: sensed its junction, moved this far
         self.entered, self._cancel = threading.Event(), threading.Event()
         self.is_clamped = True              # what the server says now (clamped())
 
@@ -55,8 +56,12 @@ class FakeRobot(object):
             self.entered.set()
             assert self._cancel.wait(WAIT_S)
             self._cancel.clear()
-            self.true_m += step.distance_mm / 2000.0
             self.is_clamped = self.clamped_after_cancel
+            if step.junction is not None and self.sensed_then_moved_mm is not None:
+                self.true_m = sensed_at_m(step.junction, 1, SETTINGS['robot']) + self.sensed_then_moved_mm / 1000.0
+                return ex.Report('preempted', 'cancelled', self.odometry(),
+                                 self.odometry() - self.sensed_then_moved_mm, False)
+            self.true_m += step.distance_mm / 2000.0
             return ex.Report('preempted', 'cancelled', self.odometry(), None, False)
         if step.pab == 'DRIVE':
             self.true_m += step.distance_mm / 1000.0
@@ -176,6 +181,34 @@ def test_pause_holds_and_resume_reclamps_only_if_unclamped_then_drives_only_what
     assert kinds == ['CLAMP_SIDEWAYS', 'DRIVE'] + again + ['DRIVE', 'MITRE_BEND', 'DRIVE', 'HOME']
     first, rest = robot.goals[1][2], robot.goals[2 + len(again)][2]
     assert first + 0 == pytest.approx(2 * rest, abs=2)   # half was driven before the pause
+
+
+@pytest.mark.parametrize('moved_mm, goes_on', [(30.0, True), (200.0, False)])
+def test_a_junction_paused_after_sensing_runs_again_only_while_its_front_v_has_not_passed_it(moved_mm, goes_on):
+    """Paused after the junction PAB sensed its junction: re-anchored there;
+    within the junction's length (90 mm) the step runs again from where the
+    robot is; beyond it the crossing cannot be resumed: the mission stops,
+    nothing more is sent."""
+    robot, waiter = FakeRobot(0.3, hold_step='MITRE_BEND'), Waiter()
+    robot.sensed_then_moved_mm = moved_mm
+    run = mission(robot, progress=waiter)
+    thread, result = _in_thread(run)
+    assert robot.entered.wait(WAIT_S)
+    run.pause()
+    if goes_on:
+        waiter.wait_for(lambda p: p.waiting_for.startswith('resume'))
+        run.resume()
+    thread.join(WAIT_S)
+    outcome = result['outcome']
+    assert run.localiser.fixes[0].junction == 'mitre_1'
+    if goes_on:
+        assert outcome.status == 'succeeded', outcome.message
+        assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND', 'CLAMP_SIDEWAYS',
+                                               'MITRE_BEND', 'DRIVE', 'HOME']
+    else:
+        assert outcome.status == 'aborted' and 'cannot be resumed' in outcome.message
+        assert 'mitre_1' in outcome.message and '200 mm after sensing' in outcome.message
+        assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND']
 
 
 def test_confirm_level_waits_for_the_operator_before_each_pab():

@@ -1,11 +1,25 @@
 """The mission executive against the physics twin, in one process (issue 11
-"Done when"): a route on straight_90 planned, run by the executive on the
-real Pirate Server (SimHarness, pirate.supervisory.harness_robot), ends at
-its target; the twin's ground truth (read by the test only) says the robot
-really went there. bench/mission_sweep runs the same over many start rolls
-with sensor noise."""
-import math
+"Done when"): routes planned, run by the executive on the real Pirate
+Server (SimHarness, pirate.supervisory.harness_robot). The twin's ground
+truth is read by the test only, to judge; the executive never sees it.
+bench/mission_sweep runs the same over many start rolls with sensor noise.
 
+- a straight route ends at its target;
+- a route through a T-joint (clamp, drive, T_JOINT STRAIGHT, drive, home)
+  re-anchors the estimate where the front V met the T-joint;
+- a map that disagrees with the pipe (a T-joint sensed far from where the
+  map has it; none where the map has one) stops the mission safe with the
+  reason;
+- a pause during the T-joint holds the robot safe; resume goes on from
+  where the robot is.
+"""
+import math
+import re
+import threading
+
+import pytest
+
+from pirate.sequencer.pabs import junction
 from pirate.sim.harness import SimHarness
 from pirate.supervisory import executive as ex
 from pirate.supervisory import planner
@@ -14,19 +28,56 @@ from pirate.supervisory.localiser import Localiser
 from pirate.supervisory.plan_cli import load_settings
 from pirate.supervisory.truth import robot_along_m
 from pirate.world import network
+from test_sequencer_sim import SAFE_INDICES
 
 SPEEDUP = 30.0
+TEE_SPEEDUP = 20.0
+WAIT_S = 600.0              # wall bound of a whole mission on a loaded machine
+UPRIGHT = math.pi / 2
+SETTINGS, MAX_DRIVE_MM = load_settings()
+
+
+def executive(plan, h, start_m, settings=SETTINGS, progress=None):
+    robot = HarnessRobot(h)
+    return robot, ex.Executive(plan, robot, Localiser(start_m, settings), settings, progress=progress,
+                               out=lambda line: None)
+
+
+def on_pab_state(h, state, action, server_state='Taking T-joint'):
+    """Call ``action()`` the first time the PAB ``server_state`` enters
+    ``state`` (in the PAB's thread, as the server reports it)."""
+    report, seen = h.server._feedback, []
+
+    def hook(feedback):
+        report(feedback)
+        if feedback.server_state == server_state and feedback.pab_state == state and not seen:
+            seen.append(state)
+            action()
+    h.server._feedback = hook
+
+
+def run_in_thread(run):
+    out = {}
+    worker = threading.Thread(target=lambda: out.update(outcome=run.run()), daemon=True)
+    worker.start()
+    return worker, out
+
+
+def finished(run, worker, out):
+    worker.join(WAIT_S)
+    if worker.is_alive():
+        run.cancel()
+        worker.join(30.0)
+        pytest.fail('the mission did not end within %.0f s wall; log: %s' % (WAIT_S, run.log[-5:]))
+    return out['outcome']
 
 
 def test_a_route_on_the_twin_runs_to_its_target_and_homes():
-    settings, max_drive_mm = load_settings()
     pipe_map = network.load(network.world_path('straight_90'))
-    plan = planner.plan(pipe_map, ['pit', 'target'], settings, max_drive_mm, None, True)
-    with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=math.pi / 2 + 0.1, seed=7) as h:
+    plan = planner.plan(pipe_map, ['pit', 'target'], SETTINGS, MAX_DRIVE_MM, None, True)
+    with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=UPRIGHT + 0.1, seed=7) as h:
         start_m = robot_along_m(pipe_map, h.ground_truth())
-        robot = HarnessRobot(h)
-        run = ex.Executive(plan, robot, Localiser(pipe_map.points['pit'], settings), settings,
-                           out=lambda line: None)
+        robot, run = executive(plan, h, pipe_map.points['pit'])
         outcome = run.run()
         truth_m = robot_along_m(pipe_map, h.ground_truth())
         assert outcome.status == 'succeeded', outcome.log
@@ -37,3 +88,105 @@ def test_a_route_on_the_twin_runs_to_its_target_and_homes():
     # (notes/issue-11.md): the robot really moved, at least 80 % of the way.
     assert 0.4 <= truth_m - start_m <= 0.52
     assert run.localiser.along_m >= pipe_map.points['target'] - 0.05
+
+
+def test_a_route_through_a_t_joint_reanchors_where_the_front_v_met_it():
+    """inspection_tee_90: launch_pit -> target through tee_1 (open upward).
+    The estimate is re-anchored where the map puts the robot when its front
+    V senses the T-joint; the twin's truth at that moment (the PAB stops
+    its wheels) must agree within 50 mm; the robot ends past the T-joint."""
+    pipe_map = network.load(network.world_path('inspection_tee_90'))
+    plan = planner.plan(pipe_map, ['launch_pit', 'target'], SETTINGS, MAX_DRIVE_MM, None, True)
+    planner.check_runnable(plan)
+    tee = planner.junctions(pipe_map)[0]
+    with SimHarness(speedup=TEE_SPEEDUP, world='inspection_tee_90', orientation=UPRIGHT - 0.1, seed=3) as h:
+        at_sensing = []
+        on_pab_state(h, junction.STOPPING, lambda: at_sensing.append(robot_along_m(pipe_map, h.ground_truth())))
+        robot, run = executive(plan, h, pipe_map.points['launch_pit'])
+        outcome = finished(run, *run_in_thread(run))
+        truth_m = robot_along_m(pipe_map, h.ground_truth())
+    assert outcome.status == 'succeeded', outcome.log
+    assert [g.step.pab for g in robot.goals] == ['CLAMP_STRAIGHT', 'DRIVE', 'T_JOINT', 'DRIVE', 'HOME']
+    fix = run.localiser.fixes[0]
+    assert fix.junction == 'tee_1' and abs(fix.mapped_m - at_sensing[0]) < 0.05, (fix, at_sensing)
+    assert truth_m > tee.exit_m + 0.1, truth_m
+
+
+def shifted_map(first_mm, target_mm):
+    """tee_run_up_90's layout (tee open upward) with its first straight
+    ``first_mm`` long: a map of that world that puts the T-joint elsewhere."""
+    return network.build({'name': 'wrong_map', 'diameter_mm': 90, 'pieces': [
+        {'type': 'straight', 'length_mm': first_mm}, {'type': 'tee', 'enter': 'run', 'side': 'up'},
+        {'type': 'straight', 'length_mm': 1500}, {'type': 'cap'}],
+        'points': [{'name': 'pit', 'at_mm': 370}, {'name': 'target', 'at_mm': target_mm}]})
+
+
+@pytest.mark.parametrize('world, first_mm, settings, reason, aborted', [
+    # The pipe's T-joint is 280 mm before the map's: sensed too early; the PAB
+    # took it (and ended clamped), then the executive stops.
+    ('tee_run_up_90', 1080, SETTINGS, r'tee_1 found with the robot at \d+ mm, the map has it at 980 mm', False),
+    # The map has a T-joint where the pipe is straight: searched 250 mm, none;
+    # the PAB aborted into the safe hold, still clamped.
+    ('straight_90', 800, dict(SETTINGS, search_mm=250), r'tee_1 not found within 250 mm', True),
+], ids=['junction where the map has none', 'none where the map has one'])
+def test_a_map_that_disagrees_with_the_pipe_stops_the_mission_safe(world, first_mm, settings, reason, aborted):
+    pipe_map = shifted_map(first_mm, first_mm + 600)
+    plan = planner.plan(pipe_map, ['pit', 'target'], settings, MAX_DRIVE_MM, None, True)
+    with SimHarness(speedup=TEE_SPEEDUP, world=world, orientation=UPRIGHT) as h:
+        robot, run = executive(plan, h, pipe_map.points['pit'], settings)
+        outcome = finished(run, *run_in_thread(run))
+        sent = h.wires['setpoint'].sent[-1][1]
+        status_now = h.server.status()
+    assert outcome.status == 'mismatch' and re.search(reason, outcome.message), outcome.log
+    assert outcome.message in outcome.log[-1]                              # the reason is in the log
+    assert [g.step.pab for g in robot.goals] == ['CLAMP_STRAIGHT', 'DRIVE', 'T_JOINT']   # nothing after it
+    assert robot.goals[-1].status == ('aborted' if aborted else 'succeeded')
+    if aborted:
+        assert all(sent[i] == 0 for i in SAFE_INDICES.values()), sent     # the safe hold on the wire
+    assert status_now == 'Idle Clamped'                                    # held in the pipe, not let go
+
+
+@pytest.mark.parametrize('pause_in, resumed_pabs', [
+    (junction.SEARCHING, ['T_JOINT', 'DRIVE', 'HOME']),
+    (junction.CROSSING_FRONT, ['CLAMP_STRAIGHT', 'T_JOINT', 'DRIVE', 'HOME']),
+    (junction.CLAMPING_FRONT, None),
+], ids=['while looking for the T-joint', 'as the front starts across', 'after the front crossed'])
+def test_a_pause_during_the_t_joint_holds_the_robot_safe_and_resume_goes_on_from_where_it_is(pause_in,
+                                                                                          resumed_pabs):
+    """Pause while T_JOINT STRAIGHT runs: its goal is cancelled and the safe
+    hold is what stays on the wire. Before the T-joint was sensed, or just
+    after (the front V not past it), the mission waits; resume re-clamps if
+    the robot is no longer clamped and runs the same step again from where
+    the robot is, which senses the T-joint and takes it; the route goes on.
+    Paused after the front crossed, the crossing cannot be resumed: the
+    mission stops with that reason, the robot held, nothing more sent."""
+    pipe_map = network.load(network.world_path('inspection_tee_90'))
+    plan = planner.plan(pipe_map, ['launch_pit', 'target'], SETTINGS, MAX_DRIVE_MM, None, True)
+    paused = threading.Event()
+    with SimHarness(speedup=TEE_SPEEDUP, world='inspection_tee_90', orientation=UPRIGHT) as h:
+        robot, run = executive(plan, h, pipe_map.points['launch_pit'],
+                               progress=lambda p: p.waiting_for.startswith(ex.WAIT_RESUME) and paused.set())
+        on_pab_state(h, pause_in, lambda: threading.Thread(target=run.pause, args=('test',)).start())
+        worker, out = run_in_thread(run)
+        if resumed_pabs is None:
+            outcome = finished(run, worker, out)
+        else:
+            assert paused.wait(WAIT_S), run.log[-5:]
+        sent = h.wires['setpoint'].sent[-1][1]
+        assert all(sent[i] == 0 for i in SAFE_INDICES.values()), sent      # the safe hold on the wire
+        assert not h.server.active and run.step_index == 2                  # held at the T-joint step
+        assert robot.goals[-1].step.pab == 'T_JOINT' and robot.goals[-1].status == 'preempted'
+        goals_at_pause = len(robot.goals)
+        if resumed_pabs is not None:
+            run.resume()
+            outcome = finished(run, worker, out)
+        truth_m = robot_along_m(pipe_map, h.ground_truth())
+    log = '\n'.join(outcome.log)
+    if resumed_pabs is None:
+        assert outcome.status == 'aborted' and 'cannot be resumed' in outcome.message, log
+        assert len(robot.goals) == goals_at_pause, log                      # nothing sent after the pause
+        return
+    assert outcome.status == 'succeeded', log
+    assert [g.step.pab for g in robot.goals[goals_at_pause:]] == resumed_pabs, log
+    assert run.localiser.fixes[-1].junction == 'tee_1'
+    assert truth_m > planner.junctions(pipe_map)[0].exit_m + 0.1, truth_m
