@@ -162,3 +162,42 @@ def test_mission_line_shows_the_step_the_level_and_what_it_waits_for(panel):
     assert panel.status_lines()[3] == 'Mission: ' + line
     panel.mission_text = ''
     assert panel.status_lines()[3] == ''
+
+
+def test_mission_line_names_the_mission_and_the_steps_option(panel):
+    virtual_node = pytest.importorskip('pirate.panel.virtual_node')
+    msg = pytest.importorskip('pirate.msg')
+    name = virtual_node.mission_name(msg.MissionGoal(map='inspection_tee_90', points=['launch_pit', 'target']))
+    fb = msg.MissionFeedback(step=3, steps=5, pab='T_JOINT', option='STRAIGHT', along_mm=785.0, time_left_s=99.0,
+                             level='full', state='waiting', waiting_for='resume (paused)')
+    assert virtual_node.mission_text(fb, name) == (
+        'inspection_tee_90 launch_pit -> target: step 3/5 T_JOINT STRAIGHT at 785 mm, level full, '
+        'about 99 s left, WAITING for resume (paused)')
+
+
+def _label_pixels(panel, channel):
+    """The pixels of the label drawn under a small button."""
+    surface = pygame.Surface((virtual.WIDTH, virtual.HEIGHT))
+    panel.draw(surface)
+    rect = panel.control(channel).rect
+    area = pygame.Rect(rect.centerx - 30, rect.bottom + 2, 60, 14)
+    return [tuple(surface.get_at((x, y))) for x in range(area.left, area.right) for y in range(area.top, area.bottom)]
+
+
+def test_in_pab_mode_the_m_row_reads_its_mission_jobs(panel):
+    """Issue 11.6: the M buttons stop joints in manual mode and control the
+    mission in PAB mode (config/nanokontrol2.yaml mission_buttons); the
+    virtual panel labels them for the mode in force."""
+    from pirate import paths
+    from pirate.panel import config, mission_buttons
+    panel_map = config.load(os.path.join(paths.CONFIG_DIR, 'nanokontrol2.yaml'))
+    panel.mission_labels = mission_buttons.labels(panel_map.mission_buttons)
+    assert panel.mission_labels == {49: 'confirm', 50: 'pause', 51: 'resume', 52: 'full', 53: 'lvl conf',
+                                    54: 'manual'}
+    manual = _label_pixels(panel, 50)
+    assert [panel.label(panel.control(c)) for c in (48, 49, 50)] == ['M', 'M', 'M']
+    panel.set_led(virtual.OPERATION_MODE_BUTTON, True)          # PAB mode
+    assert [panel.label(panel.control(c)) for c in range(48, 56)] == [
+        'M', 'confirm', 'pause', 'resume', 'full', 'lvl conf', 'manual', 'M']
+    assert _label_pixels(panel, 50) != manual                    # drawn, not only named
+    assert [panel.label(panel.control(c)) for c in (32, 64)] == ['S', 'R']

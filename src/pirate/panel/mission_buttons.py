@@ -28,6 +28,9 @@ from pirate.supervisory.executive import LEVELS, WAIT_CONFIRM, WAIT_RESUME
 MissionButton = collections.namedtuple('MissionButton', 'channel control function command')
 #: The executive's words a button may send (pirate.supervisory.executive.Executive.command).
 COMMANDS = ('confirm', 'pause', 'resume') + tuple('level %s' % level for level in LEVELS)
+#: What a mission button reads on the virtual panel in PAB mode (one short word per command).
+LABELS = {'confirm': 'confirm', 'pause': 'pause', 'resume': 'resume', 'level full': 'full',
+          'level confirm': 'lvl conf', 'level manual': 'manual'}
 #: 10 Hz ticks per half period of the continuous blink of a waiting step (2.5 Hz).
 BLINK_HALF_TICKS = 2
 
@@ -167,6 +170,12 @@ def _direction(distance_mm):
     """Backwards (a reversing drive, a junction searched rear first) or
     not: a panel button without a distance goes forwards."""
     return -1 if distance_mm < 0 else 1
+
+
+def labels(buttons):
+    """``{channel: label}`` of the mission buttons (``{channel: MissionButton}``),
+    for a panel that draws their PAB-mode job."""
+    return {channel: LABELS[button.command] for channel, button in buttons.items()}
 
 
 def goal_key(goal):

@@ -86,6 +86,7 @@ class VirtualPanel(object):
         self.operator_text = ''     # the Mapper's last message (refusals, results)
         self.mission_text = ''      # the mission executive's step, level and what it waits for
         self.pab_list = []          # one line per PAB button (pirate.panel.config.pab_buttons)
+        self.mission_labels = {}    # channel -> its PAB-mode (mission) label (mission_buttons.labels)
         self._dragging = None
         self._held = None
         self._font = None
@@ -212,13 +213,20 @@ class VirtualPanel(object):
         image = self._font.render(text, True, TEXT)
         surface.blit(image, image.get_rect(center=center))
 
+    def label(self, control):
+        """What a button reads now: in PAB mode a mission button reads its
+        mission job (the M row: confirm, pause, resume, levels), else its name."""
+        if self.operation_mode == 'PAB' and control.channel in self.mission_labels:
+            return self.mission_labels[control.channel]
+        return control.label
+
     def _draw_button(self, surface, control):
         colour = BUTTON_LIT if self.leds.get(control.channel) else BUTTON_OFF
         pygame.draw.rect(surface, colour, control.rect, border_radius=4)
         if control.rect.width > 30:
-            self._label(surface, control.label, control.rect.center)
+            self._label(surface, self.label(control), control.rect.center)
         else:
-            self._label(surface, control.label, (control.rect.centerx, control.rect.bottom + 9))
+            self._label(surface, self.label(control), (control.rect.centerx, control.rect.bottom + 9))
 
     def _draw_slider(self, surface, control):
         rect = control.rect

@@ -6,9 +6,10 @@ MidiOutput on ``names.MIDI_OUTPUT_TOPIC``, and shows the PAB state from the
 Pirate Server's action feedback and result (``/pirate/feedback``,
 ``/pirate/result``; when no server runs it simply shows no PAB news) and
 the panel's messages to the operator (refusals, results) from
-``names.OPERATOR_TOPIC``, and the running mission (step k of n, autonomy
-level, what it waits for, how it ended) from the mission executive's
-action feedback and result.
+``names.OPERATOR_TOPIC``, and the running mission (its map and route from
+its goal; step k of n, autonomy level, what it waits for, how it ended)
+from the mission executive's action goal, feedback and result. In PAB mode
+the M row reads its mission jobs (the panel map's ``mission_buttons``).
 
 Private params: ``~fps`` (redraw rate, default 30), ``~screenshot`` (path:
 save the window there once after the first LED arrives or after 2 s, for
@@ -22,10 +23,10 @@ import pygame
 import rospy
 
 from pirate import names, paths
-from pirate.msg import (MidiInput, MidiOutput, MissionActionFeedback, MissionActionResult,
+from pirate.msg import (MidiInput, MidiOutput, MissionActionFeedback, MissionActionGoal, MissionActionResult,
                         PirateActionFeedback, PirateActionResult)
 from std_msgs.msg import String
-from pirate.panel import config, virtual
+from pirate.panel import config, mission_buttons, virtual
 
 #: The panel map whose PAB buttons the panel lists (the launch's panel_config default).
 PANEL_CONFIG = os.path.join(paths.CONFIG_DIR, 'nanokontrol2.yaml')
@@ -38,7 +39,10 @@ class VirtualPanelNode(object):
 
     def __init__(self):
         self.panel = virtual.VirtualPanel()
-        self.panel.pab_list = config.pab_buttons(config.load(rospy.get_param('~panel_config', PANEL_CONFIG)))
+        panel_map = config.load(rospy.get_param('~panel_config', PANEL_CONFIG))
+        self.panel.pab_list = config.pab_buttons(panel_map)
+        self.panel.mission_labels = mission_buttons.labels(panel_map.mission_buttons)
+        self._mission = ''          # the running mission's map and route (from its goal)
         self._lock = threading.Lock()
         self._pub = rospy.Publisher(names.MIDI_INPUT_TOPIC, MidiInput, queue_size=200)
         rospy.Subscriber(names.MIDI_OUTPUT_TOPIC, MidiOutput, self._on_led, queue_size=200)
@@ -47,6 +51,7 @@ class VirtualPanelNode(object):
         rospy.Subscriber(names.PIRATE_ACTION + '/result', PirateActionResult,
                          self._on_result, queue_size=10)
         rospy.Subscriber(names.OPERATOR_TOPIC, String, self._on_operator, queue_size=10)
+        rospy.Subscriber(names.MISSION_ACTION + '/goal', MissionActionGoal, self._on_mission_goal, queue_size=10)
         rospy.Subscriber(names.MISSION_ACTION + '/feedback', MissionActionFeedback,
                          self._on_mission, queue_size=10)
         rospy.Subscriber(names.MISSION_ACTION + '/result', MissionActionResult,
@@ -66,9 +71,13 @@ class VirtualPanelNode(object):
         with self._lock:
             self.panel.operator_text = msg.data
 
+    def _on_mission_goal(self, msg):
+        with self._lock:
+            self._mission = mission_name(msg.goal)
+
     def _on_mission(self, msg):
         with self._lock:
-            self.panel.mission_text = mission_text(msg.feedback)
+            self.panel.mission_text = mission_text(msg.feedback, self._mission)
 
     def _on_mission_result(self, msg):
         with self._lock:
@@ -120,11 +129,19 @@ def feedback_text(fb):
                                                numbers or ' ' + fb.guard, timing)
 
 
-def mission_text(fb):
-    """One status line from a mission feedback: where it is and what it waits for."""
+def mission_name(goal):
+    """The mission as the operator names it: map and route ('inspection_tee_90 launch_pit -> target')."""
+    return '%s %s' % (goal.map, ' -> '.join(goal.points))
+
+
+def mission_text(fb, mission=''):
+    """One status line from a mission feedback: which mission (``mission``,
+    :func:`mission_name`), its step and option, where it is, the level and
+    what it waits for."""
     waiting = ', WAITING for %s' % fb.waiting_for if fb.waiting_for else ''
-    return 'step %d/%d %s at %.0f mm, level %s, about %.0f s left%s' % (
-        fb.step, fb.steps, fb.pab, fb.along_mm, fb.level, fb.time_left_s, waiting)
+    return '%sstep %d/%d %s%s at %.0f mm, level %s, about %.0f s left%s' % (
+        mission + ': ' if mission else '', fb.step, fb.steps, fb.pab, ' ' + fb.option if fb.option else '',
+        fb.along_mm, fb.level, fb.time_left_s, waiting)
 
 
 def main():
