@@ -211,6 +211,32 @@ def test_a_junction_paused_after_sensing_runs_again_only_while_its_front_v_has_n
         assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND']
 
 
+@pytest.mark.parametrize('moved_mm, goes_on', [(30.0, True), (200.0, False)])
+def test_a_junction_aborted_after_sensing_is_retried_only_while_its_front_v_has_not_passed_it(moved_mm, goes_on):
+    """The retry policy follows the pause's rule: a junction PAB that aborted
+    after its front V had passed the junction cannot sense it again; the
+    mission stops with that reason instead of reporting a missing junction."""
+    robot = FakeRobot(0.3)
+    junction_run = robot.run
+
+    def aborts_once(step):
+        if step.pab == 'MITRE_BEND' and not robot.aborted:
+            robot.aborted = True
+            robot.true_m = sensed_at_m(step.junction, 1, SETTINGS['robot']) + moved_mm / 1000.0
+            robot.goals.append((step.pab, step.option, round(step.distance_mm)))
+            return ex.Report('aborted', 'no robot state', robot.odometry(), robot.odometry() - moved_mm, False)
+        return junction_run(step)
+    robot.aborted, robot.run = False, aborts_once
+    outcome = mission(robot).run()
+    kinds = [g[0] for g in robot.goals]
+    if goes_on:
+        assert outcome.status == 'succeeded', outcome.message
+        assert kinds == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND', 'CLAMP_SIDEWAYS', 'MITRE_BEND', 'DRIVE', 'HOME']
+    else:
+        assert outcome.status == 'aborted' and 'abort in step 3' in outcome.message
+        assert 'cannot be resumed' in outcome.message and kinds == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND']
+
+
 def test_confirm_level_waits_for_the_operator_before_each_pab():
     robot, waiter = FakeRobot(0.3), Waiter()
     run = mission(robot, progress=waiter, level=ex.CONFIRM)

@@ -26,7 +26,7 @@ from pirate.supervisory import planner
 from pirate.supervisory.harness_robot import HarnessRobot
 from pirate.supervisory.localiser import Localiser
 from pirate.supervisory.plan_cli import load_settings
-from pirate.supervisory.truth import robot_along_m
+from pirate.supervisory.truth import on_pab_state, robot_along_m
 from pirate.world import network
 from test_sequencer_sim import SAFE_INDICES
 
@@ -34,6 +34,7 @@ SPEEDUP = 30.0
 TEE_SPEEDUP = 20.0
 WAIT_S = 600.0              # wall bound of a whole mission on a loaded machine
 UPRIGHT = math.pi / 2
+TAKING = 'Taking T-joint'       # the server state of T_JOINT (Fig 4.2)
 SETTINGS, MAX_DRIVE_MM = load_settings()
 
 
@@ -41,19 +42,6 @@ def executive(plan, h, start_m, settings=SETTINGS, progress=None):
     robot = HarnessRobot(h)
     return robot, ex.Executive(plan, robot, Localiser(start_m, settings), settings, progress=progress,
                                out=lambda line: None)
-
-
-def on_pab_state(h, state, action, server_state='Taking T-joint'):
-    """Call ``action()`` the first time the PAB ``server_state`` enters
-    ``state`` (in the PAB's thread, as the server reports it)."""
-    report, seen = h.server._feedback, []
-
-    def hook(feedback):
-        report(feedback)
-        if feedback.server_state == server_state and feedback.pab_state == state and not seen:
-            seen.append(state)
-            action()
-    h.server._feedback = hook
 
 
 def run_in_thread(run):
@@ -101,7 +89,8 @@ def test_a_route_through_a_t_joint_reanchors_where_the_front_v_met_it():
     tee = planner.junctions(pipe_map)[0]
     with SimHarness(speedup=TEE_SPEEDUP, world='inspection_tee_90', orientation=UPRIGHT - 0.1, seed=3) as h:
         at_sensing = []
-        on_pab_state(h, junction.STOPPING, lambda: at_sensing.append(robot_along_m(pipe_map, h.ground_truth())))
+        on_pab_state(h, TAKING, junction.STOPPING,
+                     lambda: at_sensing.append(robot_along_m(pipe_map, h.ground_truth())))
         robot, run = executive(plan, h, pipe_map.points['launch_pit'])
         outcome = finished(run, *run_in_thread(run))
         truth_m = robot_along_m(pipe_map, h.ground_truth())
@@ -166,7 +155,7 @@ def test_a_pause_during_the_t_joint_holds_the_robot_safe_and_resume_goes_on_from
     with SimHarness(speedup=TEE_SPEEDUP, world='inspection_tee_90', orientation=UPRIGHT) as h:
         robot, run = executive(plan, h, pipe_map.points['launch_pit'],
                                progress=lambda p: p.waiting_for.startswith(ex.WAIT_RESUME) and paused.set())
-        on_pab_state(h, pause_in, lambda: threading.Thread(target=run.pause, args=('test',)).start())
+        on_pab_state(h, TAKING, pause_in, lambda: threading.Thread(target=run.pause, args=('test',)).start())
         worker, out = run_in_thread(run)
         if resumed_pabs is None:
             outcome = finished(run, worker, out)

@@ -17,10 +17,10 @@ What a gas-network inspector expects of it (issue 11):
 - **pause / resume**: pause cancels the running goal (the server leaves the
   robot in its safe hold) and waits; resume re-clamps if the robot is no
   longer clamped and runs the same step again, a Drive only for what is
-  left of it; a junction PAB paused after it sensed its junction is
-  re-anchored there, and run again only if its front V has not passed the
-  junction (else the mission stops, the robot held: a crossing cannot be
-  resumed yet). Cancel always ends the mission.
+  left of it; a junction PAB paused (or aborted) after it sensed its
+  junction is re-anchored there, and run again only if its front V has not
+  passed the junction (else the mission stops, the robot held: a crossing
+  cannot be resumed yet). Cancel always ends the mission.
 
 Pure: the robot is an object with ``run(step) -> Report`` (blocking until
 the goal ends), ``cancel()`` (any thread) and ``clamped()`` (the server's
@@ -197,7 +197,7 @@ class Executive(object):
                            % (self.step_index + 1, step.pab))
             if report.status == 'preempted' and self._paused:
                 resuming = True
-                step = self._rest_after_pause(step, report)
+                self._check_rerun(step, report, 'pause')
                 continue
             if report.status == 'preempted':
                 raise Stop('cancelled', 'step %d (%s) was cancelled outside the mission: %s'
@@ -208,31 +208,32 @@ class Executive(object):
                 raise Stop('aborted', 'step %d (%s) %s: %s' % (self.step_index + 1, step.pab, report.status,
                                                               report.message))
             retries_left -= 1
+            self._check_rerun(step, report, 'abort')
             self._say('step %d (%s) aborted: %s; retrying (%d left)'
                       % (self.step_index + 1, step.pab, report.message, retries_left))
             self._reclamp(step, 'retry')
 
-    def _rest_after_pause(self, step, report):
-        """What is left of ``step`` after a pause: the step itself, run again
-        from where the robot is. A junction PAB paused after it sensed its
-        junction re-anchors the estimate there; run again, it senses the
-        junction again only while its front V has not passed it (moved less
-        than the junction's length since). Beyond that its crossing cannot be
-        resumed (the junction PAB has no entry in the middle of a crossing,
-        and a clamped robot driven on with a V over the hole stalled in the
-        twin while its odometry counted on): :class:`Stop`, the robot held."""
+    def _check_rerun(self, step, report, why):
+        """Before ``step`` runs again after a pause or an abort (``why``).
+        A junction PAB that had sensed its junction re-anchors the estimate
+        there; run again, it senses the junction again only while its front V
+        has not passed it (moved less than the junction's length since).
+        Beyond that its crossing cannot be resumed (the junction PAB has no
+        entry in the middle of a crossing, and a clamped robot driven on with
+        a V over the hole stalled in the twin while its odometry counted on):
+        :class:`Stop`, the robot held where it is."""
         if step.junction is None or report.junction_odometry_mm is None:
-            return step
+            return
         self._arrived(step, report)
         moved_mm = abs(report.odometry_mm - report.junction_odometry_mm)
         length_mm = (step.junction.exit_m - step.junction.entry_m) * 1000.0
         if moved_mm > length_mm:
-            raise Stop('aborted', 'paused in step %d (%s %s) %.0f mm after sensing %s, more than its %.0f mm: '
-                       'the crossing had begun and cannot be resumed (not built); the robot is held where it '
-                       'is' % (self.step_index + 1, step.pab, step.option, moved_mm, step.junction.name, length_mm))
-        self._say('  %s was sensed %.0f mm before the pause: step %d runs again from there'
-                  % (step.junction.name, moved_mm, self.step_index + 1))
-        return step
+            raise Stop('aborted', '%s in step %d (%s %s) %.0f mm after sensing %s, more than its %.0f mm: the '
+                       'crossing had begun and cannot be resumed (not built); the robot is held where it is'
+                       % (why, self.step_index + 1, step.pab, step.option, moved_mm, step.junction.name,
+                          length_mm))
+        self._say('  %s was sensed %.0f mm before the %s: step %d runs again from there'
+                  % (step.junction.name, moved_mm, why, self.step_index + 1))
 
     def _await_go(self, step):
         """Wait while paused or unconfirmed; :class:`Stop` on cancel."""

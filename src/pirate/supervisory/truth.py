@@ -32,3 +32,19 @@ def along_m(pipe_map, position):
 def robot_along_m(pipe_map, truth):
     """Where the twin's robot middle is along ``pipe_map``, m."""
     return along_m(pipe_map, middle(truth))
+
+
+def on_pab_state(harness, server_state, pab_state, action):
+    """Call ``action()`` once, the first time the PAB ``server_state`` (e.g.
+    'Taking T-joint') of a pirate.sim.harness.SimHarness enters ``pab_state``,
+    in the PAB's own thread as its server reports it (so the twin has not
+    moved on): to read the truth where a junction was sensed, or to pause
+    there."""
+    report, seen = harness.server._feedback, []
+
+    def hook(feedback):
+        report(feedback)
+        if feedback.server_state == server_state and feedback.pab_state == pab_state and not seen:
+            seen.append(pab_state)
+            action()
+    harness.server._feedback = hook
