@@ -121,6 +121,19 @@ def test_a_refused_goal_is_not_retried(status):
     assert outcome.status == 'aborted' and [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE']
 
 
+def test_a_junction_pab_refused_at_its_start_is_retried_after_reclamping():
+    """The drive up to a junction may roll the robot out of its clamp's
+    region; the junction PAB refuses to start; the retry re-clamps first."""
+    robot = FakeRobot(0.3, fail={'MITRE_BEND': ['rejected']})
+    outcome = mission(robot).run()
+    assert outcome.status == 'succeeded', outcome.message
+    assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND', 'CLAMP_SIDEWAYS',
+                                           'MITRE_BEND', 'DRIVE', 'HOME']
+    robot = FakeRobot(0.3, fail={'MITRE_BEND': ['rejected'] * 3})        # refused again: the mission ends
+    outcome = mission(robot).run()
+    assert outcome.status == 'aborted' and [g[0] for g in robot.goals].count('MITRE_BEND') == 2
+
+
 def test_a_cancel_from_outside_the_mission_is_not_retried():
     robot = FakeRobot(0.3, fail={'DRIVE': ['preempted']})
     outcome = mission(robot).run()

@@ -6,7 +6,8 @@ What a gas-network inspector expects of it (issue 11):
   mission's ``policy``, per PAB name, default in config/supervisory.yaml),
   re-establishing the clamp the step starts from first ("re-clamp and retry
   a bend"); then the mission stops safe. A goal cancelled by the operator
-  is never retried; a refused goal is not either (retrying cannot help);
+  is never retried; a refused goal is not either (retrying cannot help),
+  except a junction PAB refused at its start, which a re-clamp may cure;
 - **localisation**: every report moves the estimate along the map; every
   junction a PAB finds re-anchors it, and a junction where the map has none,
   or none where it has one, stops the mission (pirate.supervisory.localiser);
@@ -204,7 +205,7 @@ class Executive(object):
                            % (self.step_index + 1, step.pab, report.message))
             if report.junction_missing:
                 raise Stop('mismatch', str(self.localiser.junction_missing(step.junction, abs(step.distance_mm))))
-            if report.status == 'rejected' or retries_left <= 0:
+            if (report.status == 'rejected' and not self._reclamp_may_help(step)) or retries_left <= 0:
                 raise Stop('aborted', 'step %d (%s) %s: %s' % (self.step_index + 1, step.pab, report.status,
                                                               report.message))
             retries_left -= 1
@@ -212,6 +213,15 @@ class Executive(object):
             self._say('step %d (%s) aborted: %s; retrying (%d left)'
                       % (self.step_index + 1, step.pab, report.message, retries_left))
             self._reclamp(step, 'retry')
+
+    @staticmethod
+    def _reclamp_may_help(step):
+        """A junction PAB refuses to start unless the robot holds the clamp it
+        starts from within its straight region; the drive up to the junction
+        may roll the robot out of it (bench/mission_sweep: clamped at 1.52 rad
+        after the drive, refused). Re-clamping first, as a retry does, cures
+        that; any other refusal comes back and then ends the mission."""
+        return step.junction is not None and step.holds is not None
 
     def _check_rerun(self, step, report, why):
         """Before ``step`` runs again after a pause or an abort (``why``).
