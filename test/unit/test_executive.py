@@ -176,19 +176,28 @@ class Waiter(object):
             self.seen.clear()
 
 
-@pytest.mark.parametrize('clamped_after, reclamped', [(False, True), (True, False)])
-def test_pause_holds_and_resume_reclamps_only_if_unclamped_then_drives_only_what_is_left(clamped_after,
-                                                                                          reclamped):
-    robot, waiter = FakeRobot(0.3, hold_step='DRIVE'), Waiter()
-    robot.clamped_after_cancel = clamped_after
+def paused_mission(robot, resumes=True):
+    """Run a mission, pause it while ``robot.hold_step`` runs and, if the
+    mission waits for it, resume: (executive, outcome)."""
+    waiter = Waiter()
     run = mission(robot, progress=waiter)
     thread, result = _in_thread(run)
     assert robot.entered.wait(WAIT_S)
     run.pause()
-    waiter.wait_for(lambda p: p.waiting_for.startswith('resume'))
-    run.resume()
+    if resumes:
+        waiter.wait_for(lambda p: p.waiting_for.startswith('resume'))
+        run.resume()
     thread.join(WAIT_S)
-    assert result['outcome'].status == 'succeeded', result['outcome'].message
+    return run, result['outcome']
+
+
+@pytest.mark.parametrize('clamped_after, reclamped', [(False, True), (True, False)])
+def test_pause_holds_and_resume_reclamps_only_if_unclamped_then_drives_only_what_is_left(clamped_after,
+                                                                                          reclamped):
+    robot = FakeRobot(0.3, hold_step='DRIVE')
+    robot.clamped_after_cancel = clamped_after
+    outcome = paused_mission(robot)[1]
+    assert outcome.status == 'succeeded', outcome.message
     kinds = [g[0] for g in robot.goals]
     again = ['CLAMP_SIDEWAYS'] if reclamped else []
     assert kinds == ['CLAMP_SIDEWAYS', 'DRIVE'] + again + ['DRIVE', 'MITRE_BEND', 'DRIVE', 'HOME']
@@ -202,17 +211,9 @@ def test_a_junction_paused_after_sensing_runs_again_only_while_its_front_v_has_n
     within the junction's length (90 mm) the step runs again from where the
     robot is; beyond it the crossing cannot be resumed: the mission stops,
     nothing more is sent."""
-    robot, waiter = FakeRobot(0.3, hold_step='MITRE_BEND'), Waiter()
+    robot = FakeRobot(0.3, hold_step='MITRE_BEND')
     robot.sensed_then_moved_mm = moved_mm
-    run = mission(robot, progress=waiter)
-    thread, result = _in_thread(run)
-    assert robot.entered.wait(WAIT_S)
-    run.pause()
-    if goes_on:
-        waiter.wait_for(lambda p: p.waiting_for.startswith('resume'))
-        run.resume()
-    thread.join(WAIT_S)
-    outcome = result['outcome']
+    run, outcome = paused_mission(robot, resumes=goes_on)
     assert run.localiser.fixes[0].junction == 'mitre_1'
     if goes_on:
         assert outcome.status == 'succeeded', outcome.message
