@@ -19,7 +19,7 @@ rounds to 0 counts is refused: the wheels would never turn.
 """
 import math
 
-from pirate.robot import safety, tables, units
+from pirate.robot import safety, units
 from pirate.sequencer.pabs.base import ALWAYS, END, Pab, PabFailed, StateMachine, Transition
 
 DRIVING = 'driving'
@@ -133,7 +133,7 @@ class Progress(object):
             self.mark_mm, self.mark_s = view.odometry, view.stamp
         elif view.stamp - self.mark_s > self.window_s:
             raise PabFailed('no odometry progress for %.1f s with the wheels commanded '
-                            '(odometry %.1f mm, board %d silent or wheels slipping)'
-                            % (view.stamp - self.mark_s, view.odometry, tables.ODOMETRY_BOARD))
+                            '(odometry %.1f mm, the median of the drive boards: boards silent or wheels slipping)'
+                            % (view.stamp - self.mark_s, view.odometry))
         return True
 
