@@ -93,7 +93,7 @@ class TwinRobot(CommandLatch):
         self.rotation_board.update(self._mode_of('rotation'), self._drive('rotation'), dt)
         counts, mode = self._drive('wheels'), self._mode_of('wheels')
         for board, wheel in self.wheel_boards.items():
-            self._wheel_targets[board] = wheel.update(mode, counts)
+            self._wheel_targets[board] = wheel.update(mode, counts, self.rate(twin_robot.wheel_joint(board)), dt)
         self._ctrl()
 
     def _ctrl(self):
