@@ -11,8 +11,9 @@ eq 5.3: x = (v0 + vf) t / 2 with v0 = 0, so t = 2 x / vf.
 
 Bounded independently of the odometry it waits on (issue 14.1): while the
 wheels are commanded, odometry must gain ``no_progress_mm`` every
-``no_progress_s`` of robot time, else the drive aborts (a silent or broken
-odometry board, slipping wheels); and the whole drive never runs longer
+``no_progress_s`` of robot time, else the drive aborts (silent or broken
+wheel encoders, slipping wheels: the odometry is their median,
+pirate.state.odometry); and the whole drive never runs longer
 than its planned profile (|distance| at speed, the last part at creep speed)
 plus ``time_margin_s``. A speed whose wheel setpoint
 rounds to 0 counts is refused: the wheels would never turn.
