@@ -267,7 +267,7 @@ def test_velocity_wheels_and_odometry_only_while_clamped():
     robot.run(3.0)
     travelled = robot.model.odometry_mm - start
     assert 150 * 3.0 * 0.8 < travelled < 150 * 3.0 * 1.02
-    ss = robot.model.small_state(tables.ODOMETRY_BOARD)
+    ss = robot.model.small_state(tables.DRIVE_BOARDS[0])
     assert units.odometry_to_mm(ss[tables.SS_ODOMETRY]) == pytest.approx(robot.model.odometry_mm, abs=0.1)
     assert units.wheel_counts_to_mm_s(ss[tables.SS_VELOCITY]) == pytest.approx(150, abs=5)
 

@@ -107,7 +107,10 @@ def test_a_board_silenced_mid_pab_aborts_with_the_safe_hold(board, goal, phase):
 
 
 def test_drive_without_odometry_progress_stops():
-    """14.1: odometry frozen (board answering, encoder dead): Drive ran away."""
+    """14.1: odometry frozen (boards answering, encoders dead): Drive ran away.
+
+    Every drive board freezes: the odometry is their median
+    (pirate.state.odometry), which one dead encoder does not stop."""
     with SimHarness(speedup=SPEEDUP) as h:
         clamped(h)
         real = h.model.small_state
@@ -115,13 +118,13 @@ def test_drive_without_odometry_progress_stops():
 
         def small_state(board):
             data = real(board)
-            if board == tables.ODOMETRY_BOARD and 'odometry' in frozen:
-                data[tables.SS_ODOMETRY] = frozen['odometry']
+            if board in tables.DRIVE_BOARDS and board in frozen:
+                data[tables.SS_ODOMETRY] = frozen[board]
             return data
         h.model.small_state = small_state
         thread, result = run_async(h, h.goal(DRIVE, distance=400.0, speed=100.0))
         assert wait_robot(h, lambda: h.server.primitive == 'drive', 20.0)
-        frozen['odometry'] = real(tables.ODOMETRY_BOARD)[tables.SS_ODOMETRY]
+        frozen.update({b: real(b)[tables.SS_ODOMETRY] for b in tables.DRIVE_BOARDS})
         frozen_at, travel_at = h.robot_time, h.travel_mm()
         thread.join(30.0)
         outcome = result['outcome']
@@ -134,7 +137,7 @@ def test_drive_without_odometry_progress_stops():
 def test_drive_never_runs_longer_than_its_profile_plus_margin():
     """14.1: the drive's bound was 2 x distance/speed + 15 s per phase, whatever happened.
 
-    Here the odometry reports half the true travel (a slipping encoder): progress
+    Here every wheel's odometry reports half the true travel (slipping encoders): progress
     is seen, so only the time bound can stop it."""
     book = GuardBook(*load_files())
     with SimHarness(speedup=SPEEDUP) as h:
@@ -154,9 +157,9 @@ def _slow_odometry(real, factor):
 
     def small_state(board):
         data = real(board)
-        if board == tables.ODOMETRY_BOARD:
-            start.setdefault('odo', data[tables.SS_ODOMETRY])
-            data[tables.SS_ODOMETRY] = int(start['odo'] + (data[tables.SS_ODOMETRY] - start['odo']) * factor)
+        if board in tables.DRIVE_BOARDS:
+            start.setdefault(board, data[tables.SS_ODOMETRY])
+            data[tables.SS_ODOMETRY] = int(start[board] + (data[tables.SS_ODOMETRY] - start[board]) * factor)
         return data
     return small_state
 

@@ -229,9 +229,9 @@ def test_wheels_follow_velocity_and_slip_shows_in_odometry():
     run_until(robot, lambda r: False, 2.0)
     travel_mm = (robot.body_pose(twin_robot.ROOT)[0][0] - start) * 1000
     odometry_mm = {b: units.odometry_to_mm(robot.small_state(b)[tables.SS_ODOMETRY]) for b in tables.DRIVE_BOARDS}
-    assert travel_mm > 50.0                                             # it drives
-    assert odometry_mm[tables.ODOMETRY_BOARD] == pytest.approx(travel_mm, rel=0.1)   # a rolling wheel
-    assert any(abs(odometry_mm[b] - travel_mm) > 0.5 * travel_mm for b in (23, 26))   # a slipping one
+    assert travel_mm == pytest.approx(100.0 * 2.0, rel=0.1)             # at its setpoint: the PI loop (boards.WheelBoard)
+    assert odometry_mm[22] == pytest.approx(travel_mm, rel=0.1)         # Bend I's wheel rolls
+    assert any(abs(odometry_mm[b] - travel_mm) > 0.25 * travel_mm for b in (23, 26))  # a slipping one
 
 
 def test_nothing_moves_before_play_or_after_stop():

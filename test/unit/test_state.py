@@ -7,8 +7,9 @@ from pirate.robot import tables, units
 from pirate.state.assembler import BadState, StateAssembler
 
 
-def raw(angle=0, bend_load=0, odometry=0, velocity=0):
-    data = [0] * 9
+def raw(angle=0, bend_load=0, odometry=0, velocity=0, board=None):
+    """A board's Small State; board 25 (the IMU's, a drive board too) reads upright."""
+    data = imu(math.pi / 2) if board == tables.IMU_BOARD else [0] * 9
     data[tables.SS_ODOMETRY] = odometry
     data[tables.SS_VELOCITY] = velocity
     data[tables.SS_ANGLE] = angle
@@ -53,9 +54,11 @@ def test_conversions_to_si():
     assert snap.stale is False and snap.age == pytest.approx(0.05)
 
 
-def test_velocity_from_the_odometry_board():
+def test_velocity_is_the_median_of_the_drive_boards():
+    """One wheel spinning free (board 22 at 60) is not the robot's speed."""
     state = StateAssembler()
-    state.update(tables.ODOMETRY_BOARD, raw(velocity=36), 0.0)
+    for board, counts in zip(tables.DRIVE_BOARDS, (60, 36, 36, 37, 35, 36)):
+        state.update(board, raw(velocity=counts, board=board), 0.0)
     assert state.snapshot(0.0).velocity == pytest.approx(36 * 0.083 / 0.02)
 
 
@@ -94,13 +97,16 @@ def test_staleness_by_the_time_passed_in():
 
 
 def test_odometry_unwraps_across_int16_wrap():
+    """Counted from the first reading; each cycle adds the drive boards' median step."""
     state = StateAssembler()
     forward = [32000, 32700, -32700, -32000]       # +700, +136 (across the wrap), +700
     for t, value in enumerate(forward):
-        state.update(tables.ODOMETRY_BOARD, raw(odometry=value), float(t))
-    assert state.snapshot(4.0).odometry == pytest.approx((32000 + 700 + 136 + 700) * 0.083)
-    state.update(tables.ODOMETRY_BOARD, raw(odometry=32700), 5.0)   # -836, back across
-    assert state.snapshot(5.0).odometry == pytest.approx(32700 * 0.083)
+        for board in tables.BOARDS:
+            state.update(board, raw(odometry=value, board=board), float(t))
+    assert state.snapshot(4.0).odometry == pytest.approx((700 + 136 + 700) * 0.083)
+    for board in tables.BOARDS:
+        state.update(board, raw(odometry=32700, board=board), 5.0)
+    assert state.snapshot(5.0).odometry == pytest.approx((32700 - 32000) * 0.083)   # -836 back across
 
 
 def test_cycle_completion():

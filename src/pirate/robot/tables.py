@@ -127,9 +127,8 @@ SS_IMU_X, SS_IMU_Y, SS_IMU_Z, SS_IMU_U, SS_IMU_V, SS_IMU_W = 3, 4, 5, 6, 7, 8
 #: the IMU (Table B.1). The Mega reports it in the angle element of board 24,
 #: the other rotational-module board, which has no joint of its own.
 ROTATION_BOARD = 24
-#: Odometry and wheel speed are read from this board (all six wheels share
-#: one setpoint; the Mega reports each, the state node uses this one).
-ODOMETRY_BOARD = 22
+#: Odometry and wheel speed: every drive board reports its own wheel (all six
+#: share one setpoint); the state fuses them (pirate.state.odometry, median).
 #: Boards whose readings the PABs use: front tilt (21), Bend I-IV angles and
 #: odometry (22, 23, 26, 27), rotation (24), orientation (25). A silent camera
 #: (20) or rear (28) board makes the state stale but stops no PAB.

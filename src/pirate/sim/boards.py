@@ -110,22 +110,38 @@ class RotationBoard(object):
 
 class WheelBoard(object):
     """A drive board's in-wheel motor: velocity mode (counts per 20 ms,
-    the board's loop) or PWM (a DC motor: duty sets its no-load speed,
-    back-EMF its damping; duty 0 lets the wheel roll, slowed only by that
-    damping)."""
+    the board's PID loop on its encoder's speed, 2.4.3.2) or PWM (a DC
+    motor: duty sets its no-load speed, back-EMF its damping; duty 0 lets
+    the wheel roll, slowed only by that damping).
+
+    The velocity loop is a PI (the PICO boards are the report's "local PID
+    controllers", 1.1): the proportional part is the MuJoCo servo's gain,
+    the integral part shifts the servo's target by ``ki / kv`` times the
+    integrated speed error, so a wheel under steady load (bearing friction,
+    the drag of the shells) still turns at its setpoint; the integral is
+    bounded by the motor's stall torque (anti-windup).
+    """
 
     def __init__(self, cfg, radius, sign):
         self.pwm_mm_s = cfg['pwm_mm_s_at_256']
         self.radius, self.sign = radius, sign
         self.loop_kv = cfg['kv_nms_per_rad']
-        self.motor_kv = cfg['stall_nm'] / (self.pwm_mm_s / 1000.0 / radius)
+        self.loop_ki = cfg['ki_nm_per_rad']
+        self.stall = cfg['stall_nm']
+        self.motor_kv = self.stall / (self.pwm_mm_s / 1000.0 / radius)
+        self.integral = 0.0                  # rad of speed error integrated (the wheel's axle)
 
-    def update(self, mode, counts):
-        """(wheel speed target rad/s about its axle, servo gain N m s/rad)."""
+    def update(self, mode, counts, rate, dt):
+        """One PICO sample with the wheel's measured ``rate`` (rad/s about
+        its axle): (servo target rad/s, servo gain N m s/rad)."""
         if counts is not None and mode == CODE['velocity']:
-            mm_s, kv = units.wheel_counts_to_mm_s(counts), self.loop_kv
-        elif counts is not None and mode == CODE['pwm']:
-            mm_s, kv = counts / DUTY_MAX * self.pwm_mm_s, self.motor_kv
+            target = self.sign * units.wheel_counts_to_mm_s(counts) / 1000.0 / self.radius
+            bound = self.stall / self.loop_ki
+            self.integral = _clip(self.integral + (target - rate) * dt, -bound, bound)
+            return target + self.loop_ki / self.loop_kv * self.integral, self.loop_kv
+        self.integral = 0.0
+        if counts is not None and mode == CODE['pwm']:
+            mm_s = counts / DUTY_MAX * self.pwm_mm_s
         else:
-            mm_s, kv = 0.0, self.motor_kv       # stopped board: the motor's damping only
-        return self.sign * mm_s / 1000.0 / self.radius, kv
+            mm_s = 0.0                           # stopped board: the motor's damping only
+        return self.sign * mm_s / 1000.0 / self.radius, self.motor_kv

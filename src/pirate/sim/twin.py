@@ -44,6 +44,7 @@ class TwinRobot(CommandLatch):
             if name in self._qadr:
                 self.data.qpos[self._qadr[name]] = angle
         mujoco.mj_forward(self.model, self.data)
+        self._actuator = {name: self.model.actuator(name).id for name in twin_model.actuator_names()}
         self._make_boards()
         self._ctrl()
         self._substeps = int(round(PICO_PERIOD_S / self.model.opt.timestep))
@@ -93,18 +94,18 @@ class TwinRobot(CommandLatch):
         self.rotation_board.update(self._mode_of('rotation'), self._drive('rotation'), dt)
         counts, mode = self._drive('wheels'), self._mode_of('wheels')
         for board, wheel in self.wheel_boards.items():
-            self._wheel_targets[board] = wheel.update(mode, counts)
+            self._wheel_targets[board] = wheel.update(mode, counts, self.rate(twin_robot.wheel_joint(board)), dt)
         self._ctrl()
 
     def _ctrl(self):
-        ctrl = self.data.ctrl
+        ctrl, act_id = self.data.ctrl, self._actuator
         for name, board in self.bend_boards.items():
-            ctrl[self.model.actuator(name).id] = board.worm
+            ctrl[act_id[name]] = board.worm
         for name, board in self.gear_boards.items():
-            ctrl[self.model.actuator(name).id] = board.angle
-        ctrl[self.model.actuator('rotation').id] = self.rotation_board.target
+            ctrl[act_id[name]] = board.angle
+        ctrl[act_id['rotation']] = self.rotation_board.target
         for board, (target, kv) in getattr(self, '_wheel_targets', {}).items():
-            act = self.model.actuator(twin_robot.wheel_joint(board)).id
+            act = act_id[twin_robot.wheel_joint(board)]
             ctrl[act] = target
             self.model.actuator_gainprm[act, 0] = kv       # a velocity servo: kv (ctrl - qdot)
             self.model.actuator_biasprm[act, 2] = -kv
@@ -114,8 +115,7 @@ class TwinRobot(CommandLatch):
         samples = max(1, int(round(dt / PICO_PERIOD_S)))
         for _ in range(samples):
             self._boards(PICO_PERIOD_S)
-            for _ in range(self._substeps):
-                mujoco.mj_step(self.model, self.data)
+            mujoco.mj_step(self.model, self.data, nstep=self._substeps)   # the steps between two PICO samples
             self.time += PICO_PERIOD_S
 
     # --- Small State (Table B.1), raw ----------------------------------------
@@ -132,7 +132,7 @@ class TwinRobot(CommandLatch):
         travel_mm = wheel.sign * self.angle(joint) * wheel.radius * 1000.0
         data[tables.SS_ODOMETRY] = units.wrap_int16(int(round(travel_mm / units.WHEEL_MM_PER_COUNT)))
         data[tables.SS_VELOCITY] = units.mm_s_to_wheel_counts(wheel.sign * self.rate(joint) * wheel.radius * 1000.0)
-        force = self.data.actuator_force[self.model.actuator(joint).id]
+        force = self.data.actuator_force[self._actuator[joint]]
         data[tables.SS_DRIVE_LOAD] = int(round(wheel.sign * force / self.config['wheel']['stall_nm'] * safety.DUTY_MAX))
 
     def _imu_elements(self, data):

@@ -53,6 +53,11 @@ def _defaults(root, config):
                       group=str(twin_pipes.PIPE_GROUP if name == twin_pipes.PIPE_CLASS else 0))
 
 
+def actuator_names():
+    """Every actuator :func:`model_xml` writes, by name."""
+    return BEND_JOINTS + GEAR_JOINTS + ('rotation',) + tuple(twin_robot.wheel_joint(b) for b in tables.DRIVE_BOARDS)
+
+
 def _actuators(root, config):
     act = ET.SubElement(root, 'actuator')
     bend = config['bend']

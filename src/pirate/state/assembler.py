@@ -15,13 +15,17 @@ answer, so the newest message of *any* board says nothing about board 22.
 Every board's last arrival is kept; one silent for ``stale_after`` (or never
 heard while others are) makes the whole state stale, naming it in
 ``Snapshot.silent``. :func:`pab_blocker` says whether that stops the PABs:
-a silent board they read does (odometry comes only from board 22, the clamp
-angles from four others); a silent camera or rear board does not.
+a silent board they read does (the clamp angles come from boards 22, 23, 26,
+27); a silent camera or rear board does not. Odometry and wheel speed are
+the median of the six drive boards (:mod:`pirate.state.odometry`), so one
+wheel off the wall or one dead encoder does not become the robot's travel.
 """
 import collections
 import math
+import statistics
 
 from pirate.robot import tables, units
+from pirate.state.odometry import WheelOdometry
 
 #: Newest data older than this (s, monotonic) makes the state stale: three
 #: Mega cycles of 0.1 s missed.
@@ -54,8 +58,7 @@ class StateAssembler(object):
         self.stale_after = stale_after
         self._raw = {}                  # board -> list of 9 ints
         self._arrival = {}              # board -> monotonic time
-        self._odometry_counts = 0       # unwrapped
-        self._last_odometry_raw = None
+        self._odometry = WheelOdometry()
         self._orientation = math.pi / 2
         self._previous_board = None
 
@@ -68,21 +71,18 @@ class StateAssembler(object):
         _check(board, data)
         if board == tables.IMU_BOARD:
             self._orientation = _orientation(data)
-        if board == tables.ODOMETRY_BOARD:
-            self._track_odometry(data[tables.SS_ODOMETRY])
+        new_cycle = self._previous_board is not None and board <= self._previous_board
+        if new_cycle:
+            self._odometry.fold()       # the last cycle missed board 28
+        if board in tables.DRIVE_BOARDS:
+            self._odometry.update(board, data[tables.SS_ODOMETRY])
         self._raw[board] = data
         self._arrival[board] = now
-        complete = board == tables.BOARDS[-1] or (
-            self._previous_board is not None and board <= self._previous_board)
+        complete = board == tables.BOARDS[-1] or new_cycle
+        if board == tables.BOARDS[-1]:
+            self._odometry.fold()
         self._previous_board = board
         return complete
-
-    def _track_odometry(self, raw):
-        if self._last_odometry_raw is not None:
-            self._odometry_counts += units.unwrap_int16(self._last_odometry_raw, raw)
-        else:
-            self._odometry_counts = raw
-        self._last_odometry_raw = raw
 
     def age(self, now):
         """Seconds since the newest Small State (inf if none yet)."""
@@ -103,12 +103,12 @@ class StateAssembler(object):
             positions.append(_joint_angle(joint, raw))
             efforts.append(units.spring_to_mnm(raw[tables.SS_BEND_LOAD])
                            if raw is not None and joint.has_spring else 0.0)
-        drive = self._raw.get(tables.ODOMETRY_BOARD)
-        velocity = units.wheel_counts_to_mm_s(drive[tables.SS_VELOCITY]) if drive else 0.0
+        speeds = [self._raw[b][tables.SS_VELOCITY] for b in tables.DRIVE_BOARDS if b in self._raw]
+        velocity = units.wheel_counts_to_mm_s(statistics.median(speeds)) if speeds else 0.0
         age = self.age(now)
         silent = self.silent(now)
         return Snapshot(list(tables.JOINT_NAMES), positions, efforts, self._orientation,
-                        units.odometry_to_mm(self._odometry_counts), velocity,
+                        self._odometry.mm, velocity,
                         age > self.stale_after or bool(silent), age, silent)
 
 

@@ -11,15 +11,16 @@ eq 5.3: x = (v0 + vf) t / 2 with v0 = 0, so t = 2 x / vf.
 
 Bounded independently of the odometry it waits on (issue 14.1): while the
 wheels are commanded, odometry must gain ``no_progress_mm`` every
-``no_progress_s`` of robot time, else the drive aborts (a silent or broken
-odometry board, slipping wheels); and the whole drive never runs longer
+``no_progress_s`` of robot time, else the drive aborts (silent or broken
+wheel encoders, slipping wheels: the odometry is their median,
+pirate.state.odometry); and the whole drive never runs longer
 than its planned profile (|distance| at speed, the last part at creep speed)
 plus ``time_margin_s``. A speed whose wheel setpoint
 rounds to 0 counts is refused: the wheels would never turn.
 """
 import math
 
-from pirate.robot import safety, tables, units
+from pirate.robot import safety, units
 from pirate.sequencer.pabs.base import ALWAYS, END, Pab, PabFailed, StateMachine, Transition
 
 DRIVING = 'driving'
@@ -133,7 +134,7 @@ class Progress(object):
             self.mark_mm, self.mark_s = view.odometry, view.stamp
         elif view.stamp - self.mark_s > self.window_s:
             raise PabFailed('no odometry progress for %.1f s with the wheels commanded '
-                            '(odometry %.1f mm, board %d silent or wheels slipping)'
-                            % (view.stamp - self.mark_s, view.odometry, tables.ODOMETRY_BOARD))
+                            '(odometry %.1f mm, the median of the drive boards: boards silent or wheels slipping)'
+                            % (view.stamp - self.mark_s, view.odometry))
         return True
 
