@@ -36,7 +36,7 @@ JOINT_BODIES = ('front_module', 'bend_i_module', 'bend_ii_module', 'rotational_f
                 'bend_iv_module', 'rear_module')
 SIDES = {'left': (codes.LEFT, math.pi, 1.0), 'right': (codes.RIGHT, 0.0, -1.0)}
 WORLDS = ('bend_down_90', 'bend_up_90', 'bend_left_90', 'bend_right_90', 'tee_run_up_90', 'tee_run_up_110',
-          'tee_run_down_90', 'tees_run_up_90')
+          'tee_run_down_90', 'tees_run_up_90', 'bends_left_90')
 
 
 @pytest.mark.parametrize('world', WORLDS)
