@@ -8,11 +8,12 @@ test only). In a
 straight pipe the same goal looks its distance, aborts with
 junction_missing and leaves the robot clamped with the wheels stopped.
 
-Clamped sideways toward a mitre bend (config/worlds/bend_<side>_90.yaml),
-MITRE_BEND LEFT / RIGHT steers the front in, brings the rear through and
-ends with every module in the new pipe, clamped on its side there (ground
-truth); in a straight pipe the same goal finds no opening and aborts with
-junction_missing.
+Clamped sideways toward a mitre bend (config/worlds/bend_<side>_90.yaml)
+or toward the side a T-joint entered through its branch turns to
+(tee_branch_<side>_90.yaml), MITRE_BEND / T_JOINT LEFT / RIGHT steers the
+front in, brings the rear through and ends with every module in the new
+pipe, clamped on its side there (ground truth); in a straight pipe the
+same goal finds no opening and aborts with junction_missing.
 """
 import math
 
@@ -35,8 +36,9 @@ TURN_SPEEDUP = 10.0
 JOINT_BODIES = ('front_module', 'bend_i_module', 'bend_ii_module', 'rotational_front', 'bend_iii_module',
                 'bend_iv_module', 'rear_module')
 SIDES = {'left': (codes.LEFT, math.pi, 1.0), 'right': (codes.RIGHT, 0.0, -1.0)}
+TURNS = {codes.MITRE_BEND: ('bend_%s_90', 'Taking Mitre bend'), codes.T_JOINT: ('tee_branch_%s_90', 'Taking T-joint')}
 WORLDS = ('bend_down_90', 'bend_up_90', 'bend_left_90', 'bend_right_90', 'tee_run_up_90', 'tee_run_up_110',
-          'tee_run_down_90', 'tees_run_up_90', 'bends_left_90')
+          'tee_run_down_90', 'tees_run_up_90', 'bends_left_90', 'tee_branch_left_90', 'tee_branch_right_90')
 
 
 @pytest.mark.parametrize('world', WORLDS)
@@ -88,18 +90,20 @@ def clamped_sideways(h, option):
     assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
 
 
+@pytest.mark.parametrize('name', sorted(TURNS))
 @pytest.mark.parametrize('side', sorted(SIDES))
-def test_a_mitre_bend_is_taken_left_and_right_into_the_new_pipe(side):
+def test_a_turn_left_and_right_ends_in_the_new_pipe(name, side):
     option, roll, sign = SIDES[side]
-    world = network.load(network.world_path('bend_%s_90' % side))
+    world_name, server_state = TURNS[name]
+    world = network.load(network.world_path(world_name % side))
     new_pipe_from = world.pieces[1].diameter / 2          # the new pipe's near wall, off the first pipe's axis
     with SimHarness(speedup=TURN_SPEEDUP, world=world.name, orientation=roll) as h:
         clamped_sideways(h, option)
         del h.feedback[:]
-        reason, outcome = run_bounded(h, h.goal(codes.MITRE_BEND, option=option, distance=800.0), 120.0)
+        reason, outcome = run_bounded(h, h.goal(name, option=option, distance=800.0), 120.0)
         assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
         assert h.prims.executed[:len(TURN)] == TURN          # then Clamp Sideways straightens if it must
-        assert {fb.server_state for fb in h.feedback if fb.pab_state} == {'Taking Mitre bend'}
+        assert {fb.server_state for fb in h.feedback if fb.pab_state} == {server_state}
         robot_wait(h, 2.0)
         truth = h.ground_truth()
         across = {body: sign * truth['poses'][body][0][1] for body in JOINT_BODIES}

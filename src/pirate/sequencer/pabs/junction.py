@@ -21,7 +21,9 @@ doing so, bench/pab_junction_sweep), Clamp Straight's own machine
 re-adjusts it. The part that crosses is open, so neither V presses toward
 the open side "with which no contact is possible".
 
-A turn (mitre bend LEFT / RIGHT), in the robot's own frame: clamped
+A turn (mitre bend LEFT / RIGHT; T-joint LEFT / RIGHT, entered through its
+branch as pirate.supervisory.planner sends it, turning into the run whose
+other end is open), in the robot's own frame: clamped
 sideways toward the turn, the new pipe lies on the tilt-positive side of
 the V's plane, which is horizontal (gravity does not load the steering).
 Lift the front module toward the turn, open the front V, then drive with
@@ -43,8 +45,8 @@ module leaves the corner, and Clamp Sideways re-adjusts if it must. Every
 guard is in the ``turn`` row of config/guards_90.yaml, measured in the twin.
 
 Which (kind, direction) the PAB takes is :data:`TAKEN`: straight on
-through a T-joint, a mitre bend left or right (90 mm). Turns up or down
-and into a T-joint's branch are refused with the reason.
+through a T-joint, a mitre bend or a T-joint left or right (90 mm). Turns
+up or down are refused with the reason.
 """
 import collections
 import math
@@ -131,7 +133,7 @@ JUNCTIONS = {
         codes.STRAIGHT: ('straight', ('straight',))}),
 }
 #: (kind, direction) this PAB takes today; the rest are refused with the reason.
-TAKEN = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right')}
+TAKEN = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right'), ('tee', 'left'), ('tee', 'right')}
 #: Directions that steer into a new pipe (the turn states of the table).
 TURNS = ('left', 'right', 'up', 'down')
 
@@ -173,8 +175,7 @@ class TakeJunction(Pab):
             return 'a %s is taken %s, not %s' % (self.label, allowed,
                                                  codes.OPTION_NAMES.get(goal.option, goal.option))
         if not self.takes(goal.name, goal.option):
-            return ('%s %s is not yet taken by this PAB (steering up or down, or into a T-joint\'s branch, '
-                    'is not built; taken today: %s)'
+            return ('%s %s is not yet taken by this PAB (steering up or down is not built; taken today: %s)'
                     % (self.label, self.direction.upper(), _taken_text()))
         if not guards.has('junction'):
             return 'no junction guards for a %d mm pipe' % guards.pipe_diameter
