@@ -54,6 +54,7 @@ import math
 from pirate.robot import units
 from pirate.sequencer import clamp_state
 from pirate.sequencer.junction_sensing import JunctionSensor
+from pirate.sequencer.junctions import TURNS
 from pirate.sequencer.pabs import codes
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, PabFailed, StateMachine, Transition
 from pirate.sequencer.pabs.clamp import Clamp, in_region, region_around
@@ -134,8 +135,6 @@ JUNCTIONS = {
 }
 #: (kind, direction) this PAB takes today; the rest are refused with the reason.
 TAKEN = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right'), ('tee', 'left'), ('tee', 'right')}
-#: Directions that steer into a new pipe (the turn states of the table).
-TURNS = ('left', 'right', 'up', 'down')
 
 
 class JunctionMissing(PabFailed):
@@ -208,7 +207,7 @@ class TakeJunction(Pab):
 
     @property
     def turning(self):
-        """True when the goal steers into a new pipe."""
+        """True when the goal steers into a new pipe (a direction of junctions.TURNS)."""
         return self.direction in TURNS
 
     # --- running --------------------------------------------------------------
