@@ -32,7 +32,7 @@ BAD = {   # mission text: words the error must contain
                        ['line 3', 'speed 1000', '170']),
     'yaml syntax': ("steps:\n  - {pab: HOME\n  - {pab: DRIVE}\n", ['line 3', 'YAML syntax']),
     'unknown pab': ("steps:\n  - {pab: FLY}\n", ['line 2', "unknown PAB 'FLY'", 'HOME']),
-    'not built': ("steps:\n  - {pab: T_JOINT, option: LEFT}\n", ['line 2', 'not implemented']),
+    'not built': ("steps:\n  - {pab: MITRE_BEND, option: DOWN}\n", ['line 2', 'not implemented']),
     'option missing': ("steps:\n  - {pab: MITRE_BEND}\n", ['line 2', 'needs an option', 'LEFT / RIGHT']),
     'option not allowed': ("steps:\n  - {pab: HOME, option: LEFT}\n", ['line 2', "option 'LEFT'", 'none']),
     'distance on clamp': ("steps:\n  - {pab: CLAMP_STRAIGHT, distance: 5}\n", ['line 2', 'takes no distance']),

@@ -19,19 +19,25 @@ from pirate.sequencer.pabs import junction as jn
 from pirate.sequencer.pabs.base import END, PabFailed
 
 BOOK = GuardBook(*load_files())
-ALL_FACTS = [jn.Facts(*values) for values in itertools.product((True, False), repeat=4)]
+ALL_FACTS = [jn.Facts(*values) for values in itertools.product((True, False), repeat=5)]
 
 #: What each state's action guarantees about the facts read right after it.
 POSTCONDITION = {
     jn.CHANGE_MODES: lambda f: True,
-    jn.SEARCHING: lambda f: f.found,                 # else it raised JunctionMissing
-    jn.STOPPING: lambda f: f.found,
-    jn.UNCLAMPING_FRONT: lambda f: f.found and not f.front,
-    jn.CROSSING_FRONT: lambda f: f.found and not f.front,
+    jn.SEARCHING: lambda f: f.found and not f.turn,  # else it raised JunctionMissing
+    jn.STOPPING: lambda f: f.found and not f.turn,
+    jn.LIFTING_FRONT: lambda f: f.turn and not f.found,
+    jn.UNCLAMPING_FRONT: lambda f: (f.found or f.turn) and not f.front,
+    jn.CROSSING_FRONT: lambda f: f.found and not f.front and not f.turn,
+    jn.STEERING_FRONT: lambda f: f.turn and f.found and not f.front,    # else JunctionMissing
+    jn.CLAMPING_AT_CORNER: lambda f: f.turn and f.found,
+    jn.SWINGING_MIDDLE: lambda f: f.turn and f.found,
+    jn.BRINGING_REAR: lambda f: f.turn and f.found and not f.rear,
     jn.CLAMPING_FRONT: lambda f: f.found and f.front,
-    jn.UNCLAMPING_REAR: lambda f: f.found and f.front and not f.rear,
-    jn.CROSSING_REAR: lambda f: f.found and f.front and not f.rear,
-    jn.CLAMPING_REAR: lambda f: f.found and f.front and f.rear,
+    jn.UNCLAMPING_REAR: lambda f: f.found and f.front and not f.rear and not f.turn,
+    jn.CROSSING_REAR: lambda f: f.found and f.front and not f.rear and not f.turn,
+    jn.CLAMPING_REAR: lambda f: f.found and f.rear and (f.front or f.turn),
+    jn.DRIVING_IN: lambda f: f.turn and f.found and f.front and f.rear,
     jn.STRAIGHTENING: lambda f: f.found and f.front and f.rear and f.straight,
 }
 
@@ -54,12 +60,12 @@ def test_at_most_one_transition_and_one_where_the_action_succeeded(state):
 
 def test_a_clamp_that_does_not_hold_ends_the_pab():
     with pytest.raises(PabFailed):
-        jn.MACHINE.next(jn.CLAMPING_REAR, jn.Facts(found=True, front=True, rear=False, straight=True))
+        jn.MACHINE.next(jn.CLAMPING_REAR, jn.Facts(found=True, front=True, rear=False, straight=True, turn=False))
 
 
 def test_straight_through_a_t_joint_walks_the_reports_steps():
     """Report 4.7.4: detect, unclamp front, re-clamp front, the rear the same way."""
-    facts = jn.Facts(found=False, front=True, rear=True, straight=True)
+    facts = jn.Facts(found=False, front=True, rear=True, straight=True, turn=False)
     after = {jn.SEARCHING: dict(found=True), jn.UNCLAMPING_FRONT: dict(front=False),
              jn.CLAMPING_FRONT: dict(front=True), jn.UNCLAMPING_REAR: dict(rear=False),
              jn.CLAMPING_REAR: dict(rear=True)}
@@ -73,9 +79,25 @@ def test_straight_through_a_t_joint_walks_the_reports_steps():
 
 
 def test_clamped_past_the_junction_but_rolled_out_of_straight_re_adjusts():
-    rolled = jn.Facts(found=True, front=True, rear=True, straight=False)
+    rolled = jn.Facts(found=True, front=True, rear=True, straight=False, turn=False)
     assert jn.MACHINE.next(jn.CLAMPING_REAR, rolled) == jn.STRAIGHTENING
     assert jn.MACHINE.next(jn.STRAIGHTENING, rolled._replace(straight=True)) == END
+
+
+def test_a_turn_steers_the_front_in_brings_the_rear_and_straightens():
+    """Report 4.7.4 for a turn: the front part into the new pipe and clamped, then
+    the rear part through, then the robot clamped in the new pipe."""
+    facts = jn.Facts(found=False, front=True, rear=True, straight=True, turn=True)
+    after = {jn.UNCLAMPING_FRONT: dict(front=False), jn.STEERING_FRONT: dict(found=True),
+             jn.BRINGING_REAR: dict(rear=False), jn.CLAMPING_REAR: dict(rear=True), jn.CLAMPING_FRONT: dict(front=True)}
+    state, walked = jn.MACHINE.initial, []
+    while state != END:
+        walked.append(state)
+        facts = facts._replace(**after.get(state, {}))
+        state = jn.MACHINE.next(state, facts)
+    assert walked == [jn.CHANGE_MODES, jn.LIFTING_FRONT, jn.UNCLAMPING_FRONT, jn.STEERING_FRONT,
+                      jn.CLAMPING_AT_CORNER, jn.SWINGING_MIDDLE, jn.BRINGING_REAR, jn.CLAMPING_REAR,
+                      jn.CLAMPING_FRONT, jn.DRIVING_IN, jn.STRAIGHTENING]
 
 
 # --- refusals ------------------------------------------------------------------
@@ -105,11 +127,26 @@ def test_a_direction_the_junction_cannot_have_is_refused(name, option, needle):
     assert needle in check(name, option)
 
 
-@pytest.mark.parametrize('name, option', [(codes.MITRE_BEND, o) for o in
-                                          (codes.LEFT, codes.RIGHT, codes.UP, codes.DOWN)]
-                         + [(codes.T_JOINT, codes.LEFT), (codes.T_JOINT, codes.RIGHT)])
-def test_turns_are_refused_as_not_yet_taken(name, option):
+@pytest.mark.parametrize('name, option', [(codes.MITRE_BEND, codes.UP), (codes.MITRE_BEND, codes.DOWN)])
+def test_turns_not_built_are_refused_as_not_yet_taken(name, option):
     assert 'not yet taken by this PAB' in check(name, option)
+
+
+@pytest.mark.parametrize('name', [codes.MITRE_BEND, codes.T_JOINT])
+@pytest.mark.parametrize('option, orientation', [(codes.LEFT, math.pi), (codes.RIGHT, 0.0)])
+def test_a_turn_is_taken_clamped_sideways_toward_it(name, option, orientation):
+    clamped_sideways = view(orientation, angles=dict(CLAMPED, bend_i=-0.65, bend_ii=0.33, bend_iii=0.33, bend_iv=-0.65))
+    assert check(name, option, distance=800.0, robot=clamped_sideways) is None
+    other_side = view(math.pi - orientation, angles=dict(CLAMPED, bend_i=-0.65, bend_ii=0.33, bend_iii=0.33,
+                                                         bend_iv=-0.65))
+    assert 'starts clamped sideways %s' % codes.OPTION_NAMES[option] in check(name, option, robot=other_side)
+    assert 'starts clamped sideways' in check(name, option, robot=view())       # upright
+
+
+def test_a_mitre_turn_in_110_mm_is_refused_for_want_of_turn_guards():
+    angles = dict(CLAMPED, bend_i=-1.3, bend_ii=0.7, bend_iii=0.7, bend_iv=-1.3)
+    assert 'no turn guards for a 110 mm pipe' in check(codes.MITRE_BEND, codes.LEFT, robot=view(math.pi, angles),
+                                                       mm=110)
 
 
 @pytest.mark.parametrize('distance', [-100.0, 2001.0, float('nan'), float('inf')])

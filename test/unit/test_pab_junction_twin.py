@@ -1,4 +1,4 @@
-"""Take T-joint in the physics twin (issue 10.5), in process (SimHarness).
+"""Take T-joint and Take mitre bend in the physics twin (issue 10.5), in process (SimHarness).
 
 Clamped straight before a T-joint whose open side is above the robot
 (config/worlds/tee_run_up_90.yaml), T_JOINT STRAIGHT senses the hole from
@@ -7,6 +7,13 @@ both V's apex wheels on the wall past the hole (ground truth, read by the
 test only). In a
 straight pipe the same goal looks its distance, aborts with
 junction_missing and leaves the robot clamped with the wheels stopped.
+
+Clamped sideways toward a mitre bend (config/worlds/bend_<side>_90.yaml)
+or toward the side a T-joint entered through its branch turns to
+(tee_branch_<side>_90.yaml), MITRE_BEND / T_JOINT LEFT / RIGHT steers the
+front in, brings the rear through and ends with every module in the new
+pipe, clamped on its side there (ground truth); in a straight pipe the
+same goal finds no opening and aborts with junction_missing.
 """
 import math
 
@@ -22,8 +29,16 @@ SPEEDUP = 20.0
 APEX_WHEELS = {23, 26}
 CROSSING = ['look for the junction', 'stop wheels', 'unclamp front partial', 'drive front across', 'stop wheels',
             'clamp front', 'unclamp rear partial', 'drive rear across', 'stop wheels', 'clamp rear']
+TURN = ['move front turn', 'unclamp front partial', 'steer front', 'clamp front at the corner', 'swing the middle',
+        'bring the rear through', 'clamp rear', 'clamp front', 'drive into the new pipe', 'stop wheels']
+TURN_SPEEDUP = 10.0
+#: The joints between the modules and the rear module's, front to rear (ground truth bodies).
+JOINT_BODIES = ('front_module', 'bend_i_module', 'bend_ii_module', 'rotational_front', 'bend_iii_module',
+                'bend_iv_module', 'rear_module')
+SIDES = {'left': (codes.LEFT, math.pi, 1.0), 'right': (codes.RIGHT, 0.0, -1.0)}
+TURNS = {codes.MITRE_BEND: ('bend_%s_90', 'Taking Mitre bend'), codes.T_JOINT: ('tee_branch_%s_90', 'Taking T-joint')}
 WORLDS = ('bend_down_90', 'bend_up_90', 'bend_left_90', 'bend_right_90', 'tee_run_up_90', 'tee_run_up_110',
-          'tee_run_down_90', 'tees_run_up_90')
+          'tee_run_down_90', 'tees_run_up_90', 'bends_left_90', 'tee_branch_left_90', 'tee_branch_right_90')
 
 
 @pytest.mark.parametrize('world', WORLDS)
@@ -68,3 +83,42 @@ def test_no_junction_within_the_distance_aborts_with_junction_missing():
         sent = h.wires['setpoint'].sent[-1][1]
         assert all(sent[i] == 0 for i in SAFE_INDICES.values()), sent        # the safe hold
         assert h.server.status() == 'Idle Clamped'                            # it never let go
+
+
+def clamped_sideways(h, option):
+    reason, outcome = run_bounded(h, h.goal(codes.CLAMP_SIDEWAYS, option=option))
+    assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+
+
+@pytest.mark.parametrize('name', sorted(TURNS))
+@pytest.mark.parametrize('side', sorted(SIDES))
+def test_a_turn_left_and_right_ends_in_the_new_pipe(name, side):
+    option, roll, sign = SIDES[side]
+    world_name, server_state = TURNS[name]
+    world = network.load(network.world_path(world_name % side))
+    new_pipe_from = world.pieces[1].diameter / 2          # the new pipe's near wall, off the first pipe's axis
+    with SimHarness(speedup=TURN_SPEEDUP, world=world.name, orientation=roll) as h:
+        clamped_sideways(h, option)
+        del h.feedback[:]
+        reason, outcome = run_bounded(h, h.goal(name, option=option, distance=800.0), 120.0)
+        assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+        assert h.prims.executed[:len(TURN)] == TURN          # then Clamp Sideways straightens if it must
+        assert {fb.server_state for fb in h.feedback if fb.pab_state} == {server_state}
+        robot_wait(h, 2.0)
+        truth = h.ground_truth()
+        across = {body: sign * truth['poses'][body][0][1] for body in JOINT_BODIES}
+        assert all(y > new_pipe_from for y in across.values()), across          # every module in the new pipe
+        assert APEX_WHEELS <= set(truth['wheel_contacts'])
+        assert abs(math.remainder(truth['roll'] - roll, 2 * math.pi)) <= 0.05, truth['roll']
+        assert h.server.status() == 'Idle Clamped'
+
+
+def test_no_opening_toward_the_turn_aborts_with_junction_missing():
+    with SimHarness(speedup=TURN_SPEEDUP, world='straight_90', orientation=math.pi) as h:
+        clamped_sideways(h, codes.LEFT)
+        reason, outcome = run_bounded(h, h.goal(codes.MITRE_BEND, option=codes.LEFT, distance=100.0), 120.0)
+        assert reason is None and outcome.status == 'aborted', (reason, outcome and outcome.message)
+        assert outcome.junction_missing and math.isnan(outcome.junction_odometry)
+        assert 'no opening toward the left within 100 mm' in outcome.message
+        sent = h.wires['setpoint'].sent[-1][1]
+        assert all(sent[i] == 0 for i in SAFE_INDICES.values()), sent        # the safe hold

@@ -16,7 +16,7 @@ def test_every_pab_of_the_action_is_on_the_list():
     assert len(lines) == len(pab_entries)       # every PAB code has a button: no 'no button' line
     assert {goals.CODE_NAMES[e.goal.name] for e in pab_entries} == set(goals.CODES)
     assert 'fast forward: Take T-joint straight on' in lines
-    assert 'cycle: Take mitre bend left (not yet taken)' in lines
+    assert 'cycle: Take mitre bend left' in lines and 'M 1: Take mitre bend right' in lines   # taken now
     assert 'track >: Clamp Straight' in lines
 
 

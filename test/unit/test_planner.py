@@ -253,12 +253,15 @@ def test_a_route_the_server_cannot_run_yet_is_refused_before_anything_moves():
 
 
 def test_a_turn_the_junction_pab_does_not_take_yet_is_refused_by_the_real_server_table():
-    """The junction PABs exist but take no turn yet (issue 10): the planner asks
-    the server's own table with the direction, so the route stops here, not at the bend."""
-    route_plan = run(world(BEND_LEFT, {'pit': 300, 'target': 3000}), 'pit', 'target')
-    assert goals.built('MITRE_BEND') and not goals.built('MITRE_BEND', 'LEFT')
-    with pytest.raises(planner.PlanError, match=r"cannot run MITRE_BEND LEFT yet"):
+    """The junction PAB takes a mitre left / right but not up / down yet (issue 10):
+    the planner asks the server's own table with the direction, so a route
+    through a bend down stops here, not at the bend; one through a bend left passes."""
+    bend_down = [dict(BEND_LEFT[1], turn='down') if p['type'] == 'mitre' else p for p in BEND_LEFT]
+    route_plan = run(world(bend_down, {'pit': 300, 'target': 3000}), 'pit', 'target')
+    assert goals.built('MITRE_BEND', 'LEFT') and not goals.built('MITRE_BEND', 'DOWN')
+    with pytest.raises(planner.PlanError, match=r"cannot run MITRE_BEND DOWN yet"):
         planner.check_runnable(route_plan)
+    planner.check_runnable(run(world(BEND_LEFT, {'pit': 300, 'target': 3000}), 'pit', 'target'))
 
 
 def test_a_junction_direction_the_goal_cannot_carry_is_refused(monkeypatch):

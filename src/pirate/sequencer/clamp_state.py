@@ -125,7 +125,13 @@ def classify_part(guards, part, angles, efforts, orientation=None):
 
 def clamped(guards, pair, angles, efforts):
     """True when the clamp ``pair`` holds: its angle guards AND its outer spring on the wall."""
-    return pair.closed(angles) and _pushes(pair.outer, efforts, spring_clamp_mnm(guards))
+    return pair.closed(angles) and presses_wall(guards, pair.outer, efforts)
+
+
+def presses_wall(guards, bend, efforts):
+    """True when ``bend``'s spring pushes in its clamping direction at least
+    ``spring_clamp_mnm``: the V presses the wall whatever its angles."""
+    return _pushes(bend, efforts, spring_clamp_mnm(guards))
 
 
 def pressing(guards, part, efforts):

@@ -16,6 +16,7 @@ import contextlib
 from pirate.robot import safety, units
 from pirate.robot.hold import safe_hold
 from pirate.sequencer import clamp_state
+from pirate.state.feed import TimedOut
 
 #: Suffix of a guard row for the robot lying on a side (config/guards_<mm>.yaml).
 SIDEWAYS = clamp_state.SIDEWAYS
@@ -100,6 +101,25 @@ class MotionPrimitives(object):
         self.notify(name, text)
         view = self.feed.wait_until(guard, timeout or self.guards.primitive_timeout,
                                     '%s: %s' % (name, text))
+        self.notify('', '%s reached %s' % (name, text))
+        return view
+
+    def follow(self, name, act, done, text, timeout):
+        """Run primitive ``name``: call ``act(view)`` on each new robot state
+        until ``done(view)`` (a closed loop the PICO boards do not run, e.g.
+        the front tilt following the bends while steering into a new pipe).
+        Raises TimedOut after ``timeout`` s of robot time."""
+        self.executed.append(name)
+        self.notify(name, text)
+        view = self.feed.latest()
+        end = view.stamp + timeout
+        while not done(view):
+            act(view)
+            seen = view.stamp
+            view = self.feed.wait_until(lambda v: v.stamp > seen, max(end - seen, 0.0),
+                                        '%s: %s' % (name, text))
+            if view.stamp > end:
+                raise TimedOut('%s: %s not reached within %.1f s' % (name, text, timeout))
         self.notify('', '%s reached %s' % (name, text))
         return view
 

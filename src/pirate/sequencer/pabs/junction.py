@@ -10,21 +10,43 @@ robot must hold before it starts (straight for a turn up or down,
 sideways toward a left / right turn, as :mod:`pirate.sequencer.junctions`
 rules; straight to go straight on).
 
-Steps: look for the junction (drive until the front V loses its wall,
-:mod:`pirate.sequencer.junction_sensing`, or abort after the goal's
-distance with ``junction_missing``), stop, open the front V partly (the
-partial unclamp leaves it held by the worms), drive the front part across,
-clamp the front, open the rear V, drive the rear part across, clamp the
-rear: the robot ends clamped in the pipe after the junction; if re-clamping rolled it out of the straight region
-(the twin rolled 0.05 rad doing so, bench/pab_junction_sweep), Clamp
-Straight's own machine re-adjusts it. The part that crosses is open, so
-neither V presses toward the open side "with which no contact is possible".
+Straight on (T-joint): look for the junction (drive until the front V
+loses its wall, :mod:`pirate.sequencer.junction_sensing`, or abort after
+the goal's distance with ``junction_missing``), stop, open the front V
+partly (the partial unclamp leaves it held by the worms), drive the front
+part across, clamp the front, open the rear V, drive the rear part across,
+clamp the rear: the robot ends clamped in the pipe after the junction; if
+re-clamping rolled it out of the straight region (the twin rolled 0.05 rad
+doing so, bench/pab_junction_sweep), Clamp Straight's own machine
+re-adjusts it. The part that crosses is open, so neither V presses toward
+the open side "with which no contact is possible".
+
+A turn (mitre bend LEFT / RIGHT; T-joint LEFT / RIGHT, entered through its
+branch as pirate.supervisory.planner sends it, turning into the run whose
+other end is open), in the robot's own frame: clamped
+sideways toward the turn, the new pipe lies on the tilt-positive side of
+the V's plane, which is horizontal (gravity does not load the steering).
+Lift the front module toward the turn, open the front V, then drive with
+Bend I / II in torque toward the turn side while the front tilt keeps the
+front module along the new pipe (pi/2 - Bend I - Bend II): the front part
+rides the side wall and turns into the opening where there is one. Bend II
+round the corner is the sensed sign of the junction (in a straight pipe
+the walls keep it far below): no opening within the goal's distance ends
+the goal with ``junction_missing``. In the twin the front module meets a
+mitre's far wall before the front V loses a wall, and the odometry wheel
+(Bend I's) spins free there, so the straight-on sensing sees nothing; the
+steering finds the opening from 210 mm before the bend as from its far
+wall (bench/junction_turn_probe). Then clamp the front at the corner
+(Bend I's spring on the wall, Bend II carrying the turn), swing the middle
+round with the rear still clamped and driving, let the front pull the
+rear through (Bend III opening, Bend IV toward the turn side) until Bend
+III is past straight, clamp the rear, the front, drive on so the rear
+module leaves the corner, and Clamp Sideways re-adjusts if it must. Every
+guard is in the ``turn`` row of config/guards_90.yaml, measured in the twin.
 
 Which (kind, direction) the PAB takes is :data:`TAKEN`: straight on
-through a T-joint. Every turn is refused with the reason: steering the
-front into a new pipe is not built (in the twin the front module meets a
-mitre bend's far wall and the wheels stall before the front V loses a
-wall; notes/issue-10.md, "Junctions").
+through a T-joint, a mitre bend or a T-joint left or right (90 mm). Turns
+up or down are refused with the reason.
 """
 import collections
 import math
@@ -32,10 +54,12 @@ import math
 from pirate.robot import units
 from pirate.sequencer import clamp_state
 from pirate.sequencer.junction_sensing import JunctionSensor
+from pirate.sequencer.junctions import TURNS
 from pirate.sequencer.pabs import codes
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, PabFailed, StateMachine, Transition
 from pirate.sequencer.pabs.clamp import Clamp, in_region, region_around
 from pirate.sequencer.pabs.drive import STANDSTILL_MM_S, Progress, speed_problem
+from pirate.state.feed import TimedOut
 
 CHANGE_MODES = 'change control modes'
 SEARCHING = 'looking for the junction'
@@ -47,27 +71,47 @@ UNCLAMPING_REAR = 'unclamping rear partial'
 CROSSING_REAR = 'driving the rear across'
 CLAMPING_REAR = 'clamping rear'
 STRAIGHTENING = 'straightening (Clamp Straight)'
+LIFTING_FRONT = 'lifting the front toward the turn'
+STEERING_FRONT = 'steering the front into the new pipe'
+CLAMPING_AT_CORNER = 'clamping front at the corner'
+SWINGING_MIDDLE = 'swinging the middle round'
+BRINGING_REAR = 'bringing the rear through'
+DRIVING_IN = 'driving into the new pipe'
 
 #: found: the junction was sensed; front / rear: the part is clamped
 #: (full, as the robot senses it: angles and spring); straight: the rear's
-#: roll in Table 5.4's straight region around the clamp it started in.
-Facts = collections.namedtuple('Facts', 'found front rear straight')
+#: roll in Table 5.4's straight region around the clamp it started in;
+#: turn: the goal turns into a new pipe (data of the goal, not sensed).
+Facts = collections.namedtuple('Facts', 'found front rear straight turn')
 
 FOUND = Guard('junction sensed', lambda f: f.found)
-DONE = Guard('front clamped AND rear clamped AND straight', lambda f: f.front and f.rear and f.straight)
+TURN = Guard('turn', lambda f: f.turn)
+ON = Guard('NOT turn', lambda f: not f.turn)
+DONE = Guard('NOT turn AND front clamped AND rear clamped AND straight',
+             lambda f: not f.turn and f.front and f.rear and f.straight)
 
 MACHINE = StateMachine(CHANGE_MODES, (
-    Transition(CHANGE_MODES, SEARCHING, ALWAYS),
+    Transition(CHANGE_MODES, SEARCHING, ON),
+    Transition(CHANGE_MODES, LIFTING_FRONT, TURN),
     Transition(SEARCHING, STOPPING, FOUND),
     Transition(STOPPING, UNCLAMPING_FRONT, ALWAYS),
-    Transition(UNCLAMPING_FRONT, CROSSING_FRONT, ALWAYS),
+    Transition(LIFTING_FRONT, UNCLAMPING_FRONT, ALWAYS),
+    Transition(UNCLAMPING_FRONT, CROSSING_FRONT, ON),
+    Transition(UNCLAMPING_FRONT, STEERING_FRONT, TURN),
     Transition(CROSSING_FRONT, CLAMPING_FRONT, ALWAYS),
-    Transition(CLAMPING_FRONT, UNCLAMPING_REAR, Guard('front clamped', lambda f: f.front)),
+    Transition(STEERING_FRONT, CLAMPING_AT_CORNER, FOUND),
+    Transition(CLAMPING_AT_CORNER, SWINGING_MIDDLE, ALWAYS),
+    Transition(SWINGING_MIDDLE, BRINGING_REAR, ALWAYS),
+    Transition(BRINGING_REAR, CLAMPING_REAR, ALWAYS),
+    Transition(CLAMPING_FRONT, UNCLAMPING_REAR, Guard('NOT turn AND front clamped', lambda f: not f.turn and f.front)),
+    Transition(CLAMPING_FRONT, DRIVING_IN, Guard('turn AND front clamped', lambda f: f.turn and f.front)),
     Transition(UNCLAMPING_REAR, CROSSING_REAR, ALWAYS),
     Transition(CROSSING_REAR, CLAMPING_REAR, ALWAYS),
     Transition(CLAMPING_REAR, END, DONE),
-    Transition(CLAMPING_REAR, STRAIGHTENING, Guard('front clamped AND rear clamped AND NOT straight',
-                                                   lambda f: f.front and f.rear and not f.straight)),
+    Transition(CLAMPING_REAR, STRAIGHTENING, Guard('NOT turn AND front clamped AND rear clamped AND NOT straight',
+                                                   lambda f: not f.turn and f.front and f.rear and not f.straight)),
+    Transition(CLAMPING_REAR, CLAMPING_FRONT, Guard('turn AND rear clamped', lambda f: f.turn and f.rear)),
+    Transition(DRIVING_IN, STRAIGHTENING, ALWAYS),
     Transition(STRAIGHTENING, END, ALWAYS),
 ))
 
@@ -90,7 +134,7 @@ JUNCTIONS = {
         codes.STRAIGHT: ('straight', ('straight',))}),
 }
 #: (kind, direction) this PAB takes today; the rest are refused with the reason.
-TAKEN = {('tee', 'straight')}
+TAKEN = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right'), ('tee', 'left'), ('tee', 'right')}
 
 
 class JunctionMissing(PabFailed):
@@ -118,6 +162,7 @@ class TakeJunction(Pab):
         self.junction_odometry = math.nan       # mm from the goal's start (result field)
         self.junction_missing = False
         self.sensor = None
+        self.steered = None          # the RobotView in which the front had turned into the new pipe
         self.start_mm = None
         self.target = UPRIGHT        # rad: the clamp it starts in (read when it starts)
 
@@ -129,11 +174,13 @@ class TakeJunction(Pab):
             return 'a %s is taken %s, not %s' % (self.label, allowed,
                                                  codes.OPTION_NAMES.get(goal.option, goal.option))
         if not self.takes(goal.name, goal.option):
-            return ('%s %s is not yet taken by this PAB (steering into a new pipe is not built; '
-                    'taken today: %s)'
+            return ('%s %s is not yet taken by this PAB (steering up or down is not built; taken today: %s)'
                     % (self.label, self.direction.upper(), _taken_text()))
         if not guards.has('junction'):
             return 'no junction guards for a %d mm pipe' % guards.pipe_diameter
+        if self.turning and not guards.has('turn'):
+            return 'no turn guards for a %d mm pipe (steering into a new pipe was measured in 90 mm only)' % (
+                guards.pipe_diameter)
         speed = _speed(goal, guards)
         return self._check_distance(goal, guards) or speed_problem(speed, speed) or self._check_clamp(view, guards)
 
@@ -158,6 +205,11 @@ class TakeJunction(Pab):
         return [ORIENTATIONS[c] for c in self.clamps
                 if in_region(view.orientation, region_around(guards, 'straight', ORIENTATIONS[c]))]
 
+    @property
+    def turning(self):
+        """True when the goal steers into a new pipe (a direction of junctions.TURNS)."""
+        return self.direction in TURNS
+
     # --- running --------------------------------------------------------------
     def actions(self):
         return {
@@ -171,14 +223,21 @@ class TakeJunction(Pab):
             CROSSING_REAR: lambda ctx: _drive_by(ctx, 'drive rear across', 'cross_rear_mm'),
             CLAMPING_REAR: lambda ctx: _clamp(ctx, 'rear'),
             STRAIGHTENING: lambda ctx: Clamp(self.target).run(ctx),
+            LIFTING_FRONT: lambda ctx: ctx.prims.move_front('move_front_turn'),
+            STEERING_FRONT: self._steer_front,
+            CLAMPING_AT_CORNER: _clamp_at_corner,
+            SWINGING_MIDDLE: _swing_middle,
+            BRINGING_REAR: _bring_rear,
+            DRIVING_IN: lambda ctx: _drive_by(ctx, 'drive into the new pipe', 'drive_in_mm', 'turn'),
         }
 
     def facts(self, ctx):
         view = ctx.feed.latest()
         sensed = clamp_state.sensed(ctx.guards, view)
-        return Facts(found=self.sensor is not None and self.sensor.sensed is not None,
+        return Facts(found=self.steered is not None or (self.sensor is not None and self.sensor.sensed is not None),
                      front=sensed.front == clamp_state.FULL, rear=sensed.rear == clamp_state.FULL,
-                     straight=in_region(view.orientation, region_around(ctx.guards, 'straight', self.target)))
+                     straight=in_region(view.orientation, region_around(ctx.guards, 'straight', self.target)),
+                     turn=self.turning)
 
     def _change_modes(self, ctx):
         """Rotation in position, front module in PWM; remember the clamp it starts in."""
@@ -205,10 +264,37 @@ class TakeJunction(Pab):
                                   'kept its wall)' % (distance, view.odometry - self.start_mm))
         self.junction_odometry = self.sensor.sensed.odometry - self.start_mm
 
+    def _steer_front(self, ctx):
+        """Drive with the front V open and its bends toward the turn side, the
+        front tilt keeping the front module pointed along the new pipe
+        (pi/2 - Bend I - Bend II), until Bend II says the front part has
+        turned into the new pipe; JunctionMissing after the goal's distance.
+        In a straight pipe the walls keep Bend II far below ``steered_rad``."""
+        row, prims = ctx.guards.row('turn'), ctx.prims
+        distance = ctx.goal.distance or float(ctx.guards.row('junction')['search_mm'])
+        limit_s = float(row['steer_base_s']) + float(row['steer_s_per_mm']) * distance
+        start = ctx.feed.latest()
+        self.start_mm = start.odometry
+        _torque(prims, bend_i=int(row['steer_bend_i']), bend_ii=int(row['steer_bend_ii']))
+        prims.drive_at_velocity(float(row['steer_speed']))
+        try:
+            view = prims.follow('steer front', lambda v: _tilt_along_the_turn(prims, row, v),
+                                lambda v: v.angles['bend_ii'] >= float(row['steered_rad']),
+                                'bend_ii >= %.2f' % float(row['steered_rad']), limit_s)
+        except TimedOut:
+            self.junction_missing = True
+            raise JunctionMissing('no opening toward the %s within %.0f mm (%.0f s of steering; the front did not '
+                                  'turn)' % (self.direction, distance, limit_s))
+        finally:
+            prims.drive_at_velocity(0.0)
+            prims.move_module('front_tilt', 0)
+        self.steered = view
+        self.junction_odometry = view.odometry - start.odometry
+
     def summary(self, ctx):
+        why = self.sensor.sensed.why if self.sensor is not None else 'the front turned into the new pipe'
         return ('%s %s: junction sensed %.0f mm after the start (%s), %d motion primitives, ended clamped'
-                % (self.kind, self.direction, self.junction_odometry, self.sensor.sensed.why,
-                   len(ctx.prims.executed)))
+                % (self.kind, self.direction, self.junction_odometry, why, len(ctx.prims.executed)))
 
 
 def _taken_text():
@@ -241,9 +327,69 @@ def _clamp(ctx, part):
     ctx.prims.clamp(part, clamp_state.full_row(ctx.guards, ctx.feed.latest().orientation))
 
 
-def _drive_by(ctx, name, key):
-    """Drive the junction row's ``key`` mm of odometry at the search speed, then stop."""
-    row = ctx.guards.row('junction')
+def _torque(prims, **counts):
+    """Bends in torque mode at the given setpoints (counts)."""
+    for joint, value in counts.items():
+        prims.change_control_mode(joint, 'torque')
+        prims.move_module(joint, value)
+
+
+def _tilt_along_the_turn(prims, row, view):
+    """Front tilt PWM toward pi/2 - (Bend I + Bend II): the front module along the new pipe."""
+    target = min(float(row['tilt_max_rad']), math.pi / 2 - view.angles['bend_i'] - view.angles['bend_ii'])
+    limit = int(row['tilt_pwm_max'])
+    pwm = int(float(row['tilt_gain']) * (target - view.angles['front_tilt']))
+    prims.move_module('front_tilt', max(-limit, min(limit, pwm)))
+
+
+def _clamp_at_corner(ctx):
+    """The front V clamps in the new pipe with its inner bend (II) carrying the
+    turn: the clamp's angle guard cannot hold there, so the guard is Bend I's
+    spring pressing the wall with Bend II round the corner. Bend II is then
+    released (0), as after a clamp, so the middle can swing."""
+    row, guards = ctx.guards.row('turn'), ctx.guards
+    pair = guards.pair(clamp_state.full_row(guards, ctx.feed.latest().orientation), 'front')
+    _torque(ctx.prims, **{pair.outer.joint: pair.outer.setpoint, pair.inner.joint: pair.inner.setpoint})
+    inner = float(row['corner_inner_rad'])
+    ctx.prims.wait_for('clamp front at the corner',
+                       lambda v: v.angles[pair.inner.joint] >= inner and clamp_state.presses_wall(guards, pair.outer,
+                                                                                                    v.efforts),
+                       '%s >= %.2f and %s on the wall' % (pair.inner.joint, inner, pair.outer.joint))
+    ctx.prims.move_module(pair.inner.joint, 0)
+
+
+def _swing_middle(ctx):
+    """The rear, still clamped, drives the middle round the corner (Bend III
+    compliant) until Bend III has taken the turn."""
+    row = ctx.guards.row('turn')
+    _torque(ctx.prims, bend_iii=0)
+    _drive_until(ctx, 'swing the middle', float(row['steer_speed']),
+                 lambda v: v.angles['bend_iii'] >= float(row['swing_rad']), 'bend_iii >= %.2f' % float(row['swing_rad']))
+
+
+def _bring_rear(ctx):
+    """The front, clamped in the new pipe, pulls the rear through: Bend III
+    opening, Bend IV toward the turn side, until Bend III is past straight."""
+    row = ctx.guards.row('turn')
+    counts = int(row['rear_bend_counts'])
+    _torque(ctx.prims, bend_iii=counts, bend_iv=-counts)
+    through = float(row['rear_through_rad'])
+    _drive_until(ctx, 'bring the rear through', float(row['pull_speed']),
+                 lambda v: v.angles['bend_iii'] <= through, 'bend_iii <= %.2f' % through)
+
+
+def _drive_until(ctx, name, speed, guard, text):
+    """Drive at ``speed`` until ``guard`` (the turn row's timeout), then stop the wheels."""
+    ctx.prims.drive_at_velocity(speed)
+    try:
+        ctx.prims.wait_for(name, guard, text, float(ctx.guards.row('turn')['timeout_s']))
+    finally:
+        ctx.prims.drive_at_velocity(0.0)
+
+
+def _drive_by(ctx, name, key, row_name='junction'):
+    """Drive row ``row_name``'s ``key`` mm of odometry at the search speed, then stop."""
+    row = ctx.guards.row(row_name)
     distance, speed = float(row[key]), _speed(ctx.goal, ctx.guards)
     start = ctx.feed.latest()
     progress = Progress(ctx.guards.drive, start)
