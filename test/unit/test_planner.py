@@ -63,17 +63,18 @@ def test_mitre_left_clamps_sideways_left_and_stops_the_front_before_it():
     assert [s.speed_mm_s for s in steps] == [0.0, 60, 0.0, 60, 0.0]
 
 
-def test_the_way_back_takes_the_bend_rear_first_after_reclamping():
+def test_the_way_back_takes_the_bend_rear_first_still_clamped_sideways():
+    """The turn ended lying on the side it needs (no re-clamp on the way back)."""
     net = world(BEND_LEFT, {'pit': 300, 'target': 3000})
     route_plan = run(net, 'pit', 'target', 'pit')
     back = route_plan.steps[4:]
     assert [(s.pab, s.option) for s in back] == [
-        ('CLAMP_SIDEWAYS', 'LEFT'), ('DRIVE', None), ('MITRE_BEND', 'LEFT'), ('DRIVE', None), ('HOME', None)]
+        ('DRIVE', None), ('MITRE_BEND', 'LEFT'), ('DRIVE', None), ('HOME', None)]
     entry_mm, exit_mm = 2000, 2090
-    assert back[1].distance_mm == pytest.approx((exit_mm + REAR + APPROACH) - 3000)
-    assert back[2].distance_mm == -SEARCH
-    assert back[3].distance_mm == pytest.approx(300 - (entry_mm - CLEAR))
-    assert back[3].end_m == pytest.approx(0.3)
+    assert back[0].distance_mm == pytest.approx((exit_mm + REAR + APPROACH) - 3000)
+    assert back[1].distance_mm == -SEARCH
+    assert back[2].distance_mm == pytest.approx(300 - (entry_mm - CLEAR))
+    assert back[2].end_m == pytest.approx(0.3)
 
 
 def tee_run(side):
@@ -142,6 +143,20 @@ def test_two_junctions_in_a_row_reclamp_between_them_only_when_needed(side, recl
                  {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 4000})
     assert [p for p, _ in pabs(run(net, 'a', 'b'))] == [
         'CLAMP_STRAIGHT', 'DRIVE', 'MITRE_BEND'] + reclamp + ['DRIVE', 'T_JOINT', 'DRIVE', 'HOME']
+
+
+@pytest.mark.parametrize('second, reclamp', [({'type': 'mitre', 'turn': 'left'}, []),
+                                              ({'type': 'tee', 'enter': 'run', 'side': 'up'}, ['CLAMP_STRAIGHT'])])
+def test_after_a_turn_the_robot_still_lies_on_its_side(second, reclamp):
+    """A turn ends clamped sideways (the junction PAB's straightening is Clamp
+    Sideways): a second turn the same way needs no clamp, a T-joint open
+    upward needs the straight clamp first."""
+    net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'mitre', 'turn': 'left'},
+                 {'type': 'straight', 'length_mm': 1500}, second,
+                 {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 4000})
+    assert [p for p, _ in pabs(run(net, 'a', 'b'))] == [
+        'CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND'] + reclamp + ['DRIVE', second['type'] == 'tee' and 'T_JOINT'
+                                                           or 'MITRE_BEND', 'DRIVE', 'HOME']
 
 
 def test_junctions_are_named_in_path_order():

@@ -141,7 +141,9 @@ class _Planner(object):
         pab = 'MITRE_BEND' if junction.kind == 'mitre' else 'T_JOINT'
         self.add(pab, junction.direction.upper(), sign * self.settings['search_mm'], self.at, after_m,
                  junction, '%s %s%s' % (junction.name, junction.direction, '' if sign > 0 else ', rear first'))
-        self.at, self.clamp = after_m, STRAIGHT_CLAMP
+        # The junction PAB ends clamped as it started: a turn lying on the same side (Clamp Sideways
+        # straightens toward it), straight on through a T-joint upright (pirate.sequencer.pabs.junction).
+        self.at, self.clamp = after_m, clamp
 
     def _check_takeable(self, junction):
         can = self.settings['takeable'].get(junction.diameter_mm, {}).get(junction.kind, [])
