@@ -48,3 +48,18 @@ def on_pab_state(harness, server_state, pab_state, action):
             seen.append(pab_state)
             action()
     harness.server._feedback = hook
+
+
+def on_each_pab_state(harness, pab_states, action):
+    """Call ``action()`` each time a PAB of a pirate.sim.harness.SimHarness
+    enters one of ``pab_states`` (every goal, every junction), in the PAB's
+    own thread as its server reports it."""
+    report, last = harness.server._feedback, [None]
+
+    def hook(feedback):
+        report(feedback)
+        entered = feedback.pab_state != last[0]
+        last[0] = feedback.pab_state
+        if entered and feedback.pab_state in pab_states:
+            action()
+    harness.server._feedback = hook

@@ -115,6 +115,10 @@ MACHINE = StateMachine(CHANGE_MODES, (
     Transition(STRAIGHTENING, END, ALWAYS),
 ))
 
+#: The states entered the moment the junction is sensed (straight on: stopping;
+#: a turn: clamping at the corner): where a localiser's anchor applies.
+SENSED_STATES = tuple(t.target for t in MACHINE.transitions if t.guard is FOUND)
+
 UPRIGHT = math.pi / 2
 #: Clamp orientations (rad, Fig 4.7) by name.
 ORIENTATIONS = {'straight': UPRIGHT, 'sideways LEFT': math.pi, 'sideways RIGHT': 0.0}
