@@ -294,6 +294,18 @@ def test_the_way_back_reanchors_at_the_junction_rear_first():
     assert abs(robot.true_m - 0.34) < 1e-6
 
 
+def test_a_turn_anchors_the_middle_at_the_bend_straight_on_through_a_tee_before_it():
+    """The two ways a junction PAB senses its junction put the middle at
+    different places (config/supervisory.yaml sense_turn_mm / sense_front_mm)."""
+    tee_map = network.build({'name': 'tee', 'diameter_mm': 90, 'pieces': [
+        {'type': 'straight', 'length_mm': 1000}, {'type': 'tee', 'enter': 'run', 'side': 'up'},
+        {'type': 'straight', 'length_mm': 1000}]})
+    (mitre,), (tee,) = planner.junctions(MAP), planner.junctions(tee_map)
+    robot = dict(SETTINGS['robot'], sense_front_mm=100.0, sense_turn_mm=20.0)
+    assert sensed_at_m(mitre, 1, robot) == pytest.approx(2.0 - 0.020)
+    assert sensed_at_m(tee, 1, robot) == pytest.approx(1.0 - 0.100)
+
+
 def test_progress_counts_steps_and_time_left_goes_down():
     robot, waiter = FakeRobot(0.3), Waiter()
     mission(robot, progress=waiter).run()

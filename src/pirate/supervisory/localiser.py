@@ -73,7 +73,10 @@ def sensed_at_m(junction, sign, robot):
     """Where the robot's middle is (m along) when a junction PAB senses
     ``junction`` driving forward (``sign`` 1: the front V's apex reaches its
     entry, ``robot['sense_front_mm']`` ahead of the middle) or back (-1: the
-    rear V's apex reaches its exit). ``robot``: config/supervisory.yaml's row."""
+    rear V's apex reaches its exit). A turn senses its junction differently
+    (Bend II round the corner, the middle ``robot['sense_turn_mm']`` before
+    the entry). ``robot``: config/supervisory.yaml's row."""
     if sign > 0:
-        return junction.entry_m - robot['sense_front_mm'] / 1000.0
+        ahead_mm = robot['sense_front_mm'] if junction.direction == 'straight' else robot['sense_turn_mm']
+        return junction.entry_m - ahead_mm / 1000.0
     return junction.exit_m + robot['sense_rear_mm'] / 1000.0
