@@ -21,6 +21,7 @@ FRONT = SETTINGS['robot']['front_mm']
 REAR = SETTINGS['robot']['rear_mm']
 APPROACH = SETTINGS['approach_mm']
 CLEAR = SETTINGS['clear_mm']
+TURN_END = SETTINGS['turn_end_mm']
 SEARCH = SETTINGS['search_mm']
 
 
@@ -57,8 +58,8 @@ def test_mitre_left_clamps_sideways_left_and_stops_the_front_before_it():
     entry_mm, exit_mm = 2000, 2090
     assert steps[1].distance_mm == pytest.approx(entry_mm - FRONT - APPROACH - 300)
     assert steps[2].distance_mm == SEARCH and steps[2].junction.name == 'mitre_1'
-    assert steps[2].end_m * 1000 == pytest.approx(exit_mm + CLEAR)
-    assert steps[3].distance_mm == pytest.approx(3000 - exit_mm - CLEAR)
+    assert steps[2].end_m * 1000 == pytest.approx(exit_mm + TURN_END)
+    assert steps[3].distance_mm == pytest.approx(3000 - exit_mm - TURN_END)
     # The mission's speed is the drives'; the clamp and the junction PAB run at their own (0).
     assert [s.speed_mm_s for s in steps] == [0.0, 60, 0.0, 60, 0.0]
 
@@ -73,7 +74,7 @@ def test_the_way_back_takes_the_bend_rear_first_still_clamped_sideways():
     entry_mm, exit_mm = 2000, 2090
     assert back[0].distance_mm == pytest.approx((exit_mm + REAR + APPROACH) - 3000)
     assert back[1].distance_mm == -SEARCH
-    assert back[2].distance_mm == pytest.approx(300 - (entry_mm - CLEAR))
+    assert back[2].distance_mm == pytest.approx(300 - (entry_mm - TURN_END))
     assert back[2].end_m == pytest.approx(0.3)
 
 

@@ -191,7 +191,8 @@ class Executive(object):
                 return None
             report = self._goal(todo)
             if report.status == 'succeeded':
-                return self._arrived(step, report)
+                self._arrived(step, report)
+                return self._left_turn(step, report)
             resuming = False
             if self._cancelled:
                 raise Stop('cancelled', 'cancelled by the operator during step %d (%s)'
@@ -284,6 +285,14 @@ class Executive(object):
             self.localiser.update(report.odometry_mm)
         self._say('  %s: %s (at %.0f mm)' % (report.status, report.message, self.localiser.along_m * 1000))
         return report
+
+    def _left_turn(self, step, report):
+        """A turn taken: the estimate re-anchored where the turn left the
+        robot (its wheels slip round the corner, its odometry does not say)."""
+        if step.junction is not None and step.junction.direction != 'straight':
+            self.localiser.turn_taken(step.end_m, report.odometry_mm)
+            self._say('  %s taken: re-anchored at %.0f mm, where a turn ends' % (step.junction.name,
+                                                                               step.end_m * 1000))
 
     def _arrived(self, step, report):
         if step.junction is None:

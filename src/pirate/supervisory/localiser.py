@@ -63,6 +63,14 @@ class Localiser(object):
         self.anchor_m, self.anchor_odometry, self.along_m = mapped, odometry_mm, mapped
         return mapped
 
+    def turn_taken(self, end_m, odometry_mm):
+        """A turn's PAB ended with the robot in the new pipe, its middle at
+        ``end_m`` (the planner's ``turn_end_mm`` past the junction: where the
+        turn's steps leave it, set by the robot's geometry). Re-anchor there:
+        round the corner the wheels slip while the middle swings, clamped,
+        and the odometry over-counts (about 250 mm per turn in the twin)."""
+        self.anchor_m, self.anchor_odometry, self.along_m = end_m, odometry_mm, end_m
+
     @staticmethod
     def junction_missing(junction, searched_mm):
         """The map's junction was not found within the search distance."""

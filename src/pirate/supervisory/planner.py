@@ -137,7 +137,8 @@ class _Planner(object):
                             % (came_from, junction.name, 'front' if sign > 0 else 'rear',
                                self.settings['approach_mm']))
         self._drive((stop_m - self.at) * 1000, 'up to %s' % junction.name)
-        after_m = (junction.exit_m if sign > 0 else junction.entry_m) + sign * self.settings['clear_mm'] / 1000.0
+        clear_mm = self.settings['clear_mm' if junction.direction == 'straight' else 'turn_end_mm']
+        after_m = (junction.exit_m if sign > 0 else junction.entry_m) + sign * clear_mm / 1000.0
         pab = 'MITRE_BEND' if junction.kind == 'mitre' else 'T_JOINT'
         self.add(pab, junction.direction.upper(), sign * self.settings['search_mm'], self.at, after_m,
                  junction, '%s %s%s' % (junction.name, junction.direction, '' if sign > 0 else ', rear first'))
