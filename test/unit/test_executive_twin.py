@@ -11,7 +11,9 @@ bench/mission_sweep runs the same over many start rolls with sensor noise.
   map has it; none where the map has one) stops the mission safe with the
   reason;
 - a pause during the T-joint holds the robot safe; resume goes on from
-  where the robot is.
+  where the robot is;
+- a route through two mitre bends and a T-joint (inspection_network_90)
+  ends at its target, re-anchored at each junction.
 """
 import math
 import re
@@ -26,7 +28,7 @@ from pirate.supervisory import planner
 from pirate.supervisory.harness_robot import HarnessRobot
 from pirate.supervisory.localiser import Localiser
 from pirate.supervisory.plan_cli import load_settings
-from pirate.supervisory.truth import on_pab_state, robot_along_m
+from pirate.supervisory.truth import on_each_pab_state, on_pab_state, robot_along_m
 from pirate.world import network
 from test_sequencer_sim import SAFE_INDICES
 
@@ -99,6 +101,32 @@ def test_a_route_through_a_t_joint_reanchors_where_the_front_v_met_it():
     fix = run.localiser.fixes[0]
     assert fix.junction == 'tee_1' and abs(fix.mapped_m - at_sensing[0]) < 0.05, (fix, at_sensing)
     assert truth_m > tee.exit_m + 0.1, truth_m
+
+
+def test_a_route_through_two_turns_and_a_t_joint_ends_at_its_target():
+    """inspection_network_90 (issue 11's network: mitre left, T-joint
+    straight on, mitre right): the clamps each junction needs in between,
+    every junction re-anchored where the twin's robot was when its PAB
+    sensed it (within 50 mm), and the estimate at the target within 50 mm
+    of the truth (the turns re-anchor where they end)."""
+    pipe_map = network.load(network.world_path('inspection_network_90'))
+    plan = planner.plan(pipe_map, ['launch_pit', 'target'], SETTINGS, MAX_DRIVE_MM, None, True)
+    planner.check_runnable(plan)
+    with SimHarness(speedup=TEE_SPEEDUP, world='inspection_network_90', orientation=UPRIGHT + 0.15, seed=5) as h:
+        robot, run = executive(plan, h, pipe_map.points['launch_pit'])
+        at_sensing = {}
+        on_each_pab_state(h, junction.SENSED_STATES, lambda: at_sensing.__setitem__(
+            len(run.localiser.fixes), robot_along_m(pipe_map, h.ground_truth())))
+        outcome = finished(run, *run_in_thread(run))
+        truth_m = robot_along_m(pipe_map, h.ground_truth())
+    assert outcome.status == 'succeeded', outcome.log
+    assert [g.step.pab for g in robot.goals] == [
+        'CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND', 'CLAMP_STRAIGHT', 'DRIVE', 'T_JOINT', 'CLAMP_SIDEWAYS', 'DRIVE',
+        'MITRE_BEND', 'DRIVE', 'HOME']
+    fixes = run.localiser.fixes
+    assert [f.junction for f in fixes] == ['mitre_1', 'tee_1', 'mitre_2']
+    assert all(abs(f.mapped_m - at_sensing[i]) < 0.05 for i, f in enumerate(fixes)), (fixes, at_sensing)
+    assert abs(run.localiser.along_m - truth_m) < 0.05, (run.localiser.along_m, truth_m)
 
 
 def shifted_map(first_mm, target_mm):
