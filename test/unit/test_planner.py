@@ -235,6 +235,18 @@ def test_plan_mission_prints_the_shipped_inspection_route(capsys):
     assert out[-1].split()[1] == 'HOME'
 
 
+@pytest.mark.parametrize('world, warning', [
+    ('inspection_90', 'cannot run yet'),     # its T-joint opens to the right: T_JOINT STRAIGHT starts upright only
+    ('inspection_network_90', None),
+])
+def test_plan_mission_says_when_the_server_cannot_run_the_plan_yet(world, warning, capsys):
+    from pirate.supervisory import plan_cli
+    assert plan_cli.main([world, 'launch_pit', 'target']) == 0
+    out, err = capsys.readouterr()
+    assert out.splitlines()[-1].split()[1] == 'HOME'
+    assert (warning in err and 'T_JOINT STRAIGHT starts from clamp straight only' in err) if warning else err == ''
+
+
 @pytest.mark.parametrize('argv, reason', [
     (['inspection_90', 'launch_pit', 'nowhere'], "no point 'nowhere'"),
     (['no_such_map', 'a', 'b'], 'cannot read'),

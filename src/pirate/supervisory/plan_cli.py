@@ -3,8 +3,10 @@
 MAP is a world file (config/worlds/, pirate.world.network) or the name of
 one there; FROM, TO (and more points to visit in order) are point names of
 that map. Prints the PAB goals the route needs, with where each starts and
-should end, before anything moves. Needs no ROS master. Exit 0 with a plan,
-2 when the map or the route is refused (the reason on stderr).
+should end, before anything moves, and says on stderr when the Pirate
+Server cannot run a step of it yet (a junction the PAB does not take).
+Needs no ROS master. Exit 0 with a plan, 2 when the map or the route is
+refused (the reason on stderr).
 """
 import argparse
 import os
@@ -42,4 +44,9 @@ def main(argv=None):
         print('plan_mission: %s' % refused, file=sys.stderr)
         return 2
     print('\n'.join(planner.format_plan(route_plan)))
+    try:
+        planner.check_runnable(route_plan)
+    except planner.PlanError as not_yet:
+        print('plan_mission: this plan cannot run yet (run_mission refuses it before anything moves): %s'
+              % not_yet, file=sys.stderr)
     return 0
