@@ -40,26 +40,34 @@ def on_pab_state(harness, server_state, pab_state, action):
     in the PAB's own thread as its server reports it (so the twin has not
     moved on): to read the truth where a junction was sensed, or to pause
     there."""
-    report, seen = harness.server._feedback, []
+    seen = []
 
-    def hook(feedback):
-        report(feedback)
+    def call(feedback):
         if feedback.server_state == server_state and feedback.pab_state == pab_state and not seen:
             seen.append(pab_state)
             action()
-    harness.server._feedback = hook
+    _on_feedback(harness, call)
 
 
 def on_each_pab_state(harness, pab_states, action):
     """Call ``action()`` each time a PAB of a pirate.sim.harness.SimHarness
     enters one of ``pab_states`` (every goal, every junction), in the PAB's
     own thread as its server reports it."""
-    report, last = harness.server._feedback, [None]
+    last = [None]
 
-    def hook(feedback):
-        report(feedback)
+    def call(feedback):
         entered = feedback.pab_state != last[0]
         last[0] = feedback.pab_state
         if entered and feedback.pab_state in pab_states:
             action()
+    _on_feedback(harness, call)
+
+
+def _on_feedback(harness, call):
+    """Have ``call(feedback)`` see every feedback the harness's server reports, after it is reported."""
+    report = harness.server._feedback
+
+    def hook(feedback):
+        report(feedback)
+        call(feedback)
     harness.server._feedback = hook
