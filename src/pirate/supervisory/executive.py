@@ -192,7 +192,7 @@ class Executive(object):
             report = self._goal(todo)
             if report.status == 'succeeded':
                 self._arrived(step, report)
-                return self._left_turn(step, report)
+                return self._after_turn(step, report)
             resuming = False
             if self._cancelled:
                 raise Stop('cancelled', 'cancelled by the operator during step %d (%s)'
@@ -286,7 +286,7 @@ class Executive(object):
         self._say('  %s: %s (at %.0f mm)' % (report.status, report.message, self.localiser.along_m * 1000))
         return report
 
-    def _left_turn(self, step, report):
+    def _after_turn(self, step, report):
         """A turn taken: the estimate re-anchored where the turn left the
         robot (its wheels slip round the corner, its odometry does not say)."""
         if step.junction is not None and step.junction.direction != 'straight':
