@@ -59,6 +59,13 @@ def required_clamp(kind, direction, open_side=None):
     raise ValueError('a %s cannot be taken %r' % (kind, direction))
 
 
+def is_turn(direction):
+    """True when a junction taken in ``direction`` leaves for a new pipe
+    (one of :data:`TURNS`), False straight on: the two ways a junction PAB
+    senses and ends (the supervisory layer anchors and plans by it)."""
+    return direction in TURNS
+
+
 def label(clamp):
     """The junction PAB's name for ``clamp`` ('straight', 'sideways LEFT', ...)."""
     return 'straight' if clamp == STRAIGHT_CLAMP else 'sideways %s' % clamp.side

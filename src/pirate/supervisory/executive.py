@@ -34,6 +34,7 @@ import collections
 import math
 import threading
 
+from pirate.sequencer.junctions import is_turn
 from pirate.supervisory.localiser import MapMismatch
 
 FULL, CONFIRM, MANUAL = 'full', 'confirm', 'manual'
@@ -289,7 +290,7 @@ class Executive(object):
     def _after_turn(self, step, report):
         """A turn taken: the estimate re-anchored where the turn left the
         robot (its wheels slip round the corner, its odometry does not say)."""
-        if step.junction is not None and step.junction.direction != 'straight':
+        if step.junction is not None and is_turn(step.junction.direction):
             self.localiser.turn_taken(step.end_m, report.odometry_mm)
             self._say('  %s taken: re-anchored at %.0f mm, where a turn ends' % (step.junction.name,
                                                                                step.end_m * 1000))

@@ -14,6 +14,8 @@ negative odometry, SPEC 6). Pure: no ROS.
 """
 import collections
 
+from pirate.sequencer.junctions import is_turn
+
 #: One junction's check: the junction, where odometry put the robot (m) and where the map does (m).
 Fix = collections.namedtuple('Fix', 'junction estimated_m mapped_m')
 
@@ -85,6 +87,6 @@ def sensed_at_m(junction, sign, robot):
     (Bend II round the corner, the middle ``robot['sense_turn_mm']`` before
     the entry). ``robot``: config/supervisory.yaml's row."""
     if sign > 0:
-        ahead_mm = robot['sense_front_mm'] if junction.direction == 'straight' else robot['sense_turn_mm']
+        ahead_mm = robot['sense_turn_mm'] if is_turn(junction.direction) else robot['sense_front_mm']
         return junction.entry_m - ahead_mm / 1000.0
     return junction.exit_m + robot['sense_rear_mm'] / 1000.0

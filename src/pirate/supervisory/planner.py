@@ -24,7 +24,7 @@ Drive limit (config/sequencer.yaml) are passed in.
 import collections
 
 from pirate.sequencer import goals
-from pirate.sequencer.junctions import STRAIGHT_CLAMP, label, pab_start_clamps, required_clamp
+from pirate.sequencer.junctions import STRAIGHT_CLAMP, is_turn, label, pab_start_clamps, required_clamp
 
 #: One junction of the map, as the route meets it.
 Junction = collections.namedtuple('Junction', 'name kind direction open_side entry_m exit_m diameter_mm')
@@ -137,7 +137,7 @@ class _Planner(object):
                             % (came_from, junction.name, 'front' if sign > 0 else 'rear',
                                self.settings['approach_mm']))
         self._drive((stop_m - self.at) * 1000, 'up to %s' % junction.name)
-        clear_mm = self.settings['clear_mm' if junction.direction == 'straight' else 'turn_end_mm']
+        clear_mm = self.settings['turn_end_mm' if is_turn(junction.direction) else 'clear_mm']
         after_m = (junction.exit_m if sign > 0 else junction.entry_m) + sign * clear_mm / 1000.0
         pab = 'MITRE_BEND' if junction.kind == 'mitre' else 'T_JOINT'
         self.add(pab, junction.direction.upper(), sign * self.settings['search_mm'], self.at, after_m,
