@@ -2,16 +2,19 @@
 """rostest: a clamp PAB (Clamp Straight / Clamp Sideways) over ROS with a
 real action client, against the physics twin (sim time), issue 10.
 
-The goal ``~goal`` succeeds with the primitives ``~expected``, its
-``~loops`` passes each run ``~min_passes``..``~max_passes`` times (Table 6.2's
-pass, which a clamp on a side needs when it rolls the robot out of the
-straight band, notes/issue-9.md; seq_experiment's check), and leaves the
-rear in the straight region of Table 5.4 moved to ``~target`` (rad), the
-server Idle Clamped; Home is sent and cancelled at a random instant of sim
-time (seed printed): PREEMPTED with the safe hold on the wire (or SUCCEEDED
-when it was faster than the draw); sent again it leaves the robot Idle
-Unclamped. (A clamp cancelled and retried may need the re-adjusting
-rotations, which the twin does not converge yet: notes/issue-10.md.)
+1. The goal ``~goal`` succeeds with the primitives ``~expected``, its
+   ``~loops`` passes each run ``~min_passes``..``~max_passes`` times (Table
+   6.2's pass, which a clamp on a side needs when it rolls the robot out of
+   the straight band, notes/issue-9.md; seq_experiment's check), and leaves
+   the rear in the straight region of Table 5.4 moved to ``~target`` (rad),
+   the server Idle Clamped.
+2. A Drive is cancelled at a random instant of its run: PREEMPTED with the
+   safe hold on the wire, the robot still clamped.
+3. Home is cancelled at a random instant, then sent again: Idle Unclamped.
+4. ``~goal`` from there is cancelled at a random instant, then sent again:
+   it must end Idle Clamped at the target whatever the cancel left (a part
+   clamped, partly clamped, half rotated).
+Each random instant is drawn within ``~cancel_within`` sim s, seed printed.
 Built on seq_experiment's helpers.
 """
 import math
@@ -19,27 +22,36 @@ import math
 import rospy
 import rostest
 
+from pirate.msg import PirateGoal
+
 from seq_experiment import SequencerTest
 
-HOME = {'name': 5}
+HOME = {'name': PirateGoal.HOME}
+DRIVE = {'name': PirateGoal.DRIVE, 'distance': 200.0, 'speed': 25.0}
+DRIVE_S = 8.0              # sim s the Drive takes: 200 mm at 25 mm/s
 STRAIGHT_BAND = (1.52 - math.pi / 2, 1.62 - math.pi / 2)   # Table 5.4 around the target
 
 
 class PabClampTest(SequencerTest):
-    """One clamp goal, Home cancelled at random, Home again."""
+    """Clamp, Drive cancelled, Home cancelled and again, clamp cancelled and again."""
 
-    def _assert_at_target(self):
-        offset = self.state.orientation - float(rospy.get_param('~target'))
-        self.assertTrue(STRAIGHT_BAND[0] <= offset <= STRAIGHT_BAND[1], self.state.orientation)
+    def _assert_clamped_at_target(self, result, tag):
+        self.assertEqual(result.server_state, 'Idle Clamped', tag)
+        offset = math.remainder(self.state.orientation - float(rospy.get_param('~target')), 2 * math.pi)
+        self.assertTrue(STRAIGHT_BAND[0] <= offset <= STRAIGHT_BAND[1],
+                        '%s: roll %.3f rad' % (tag, self.state.orientation))
 
     def test_scenario(self):
         spec = rospy.get_param('~goal')
         result = self._run(spec)
         self._assert_sequence(self._assert_trace(result), rospy.get_param('~expected'))
-        self.assertEqual(result.server_state, 'Idle Clamped')
-        self._assert_at_target()
+        self._assert_clamped_at_target(result, 'first clamp')
+        seed = self._cancel_at_random(DRIVE, 'pab_clamp: Drive', within_s=DRIVE_S)
+        self.assertEqual(self.client.get_result().server_state, 'Idle Clamped', 'seed %d' % seed)
         seed = self._cancel_at_random(HOME, 'pab_clamp: Home')
         self.assertEqual(self._run(HOME).server_state, 'Idle Unclamped', 'seed %d' % seed)
+        seed = self._cancel_at_random(spec, 'pab_clamp: %s' % spec)
+        self._assert_clamped_at_target(self._run(spec), 'clamp after the cancel, seed %d' % seed)
 
 
 if __name__ == '__main__':

@@ -149,13 +149,15 @@ class SequencerTest(unittest.TestCase):
         with self.lock:
             return any(t >= since and is_safe(d) for t, d in self.setpoints)
 
-    def _cancel_at_random(self, spec, tag):
-        """Send ``spec``, cancel it at a random sim instant within ``~cancel_within`` s
-        (seed logged), and check what a cancel must leave: preempted with the
-        trace ending preempted and the safe hold on the wire (or it had already
-        succeeded). Returns the seed, for the caller's messages."""
+    def _cancel_at_random(self, spec, tag, within_s=None):
+        """Send ``spec``, cancel it at a random sim instant within ``within_s``
+        (default ``~cancel_within``) s (seed logged), and check what a cancel
+        must leave: preempted with the trace ending preempted and the safe hold
+        on the wire (or it had already succeeded). Returns the seed, for the
+        caller's messages."""
         seed = int(time.time() * 1000) % 100000
-        cancel_after = random.Random(seed).uniform(0.2, float(rospy.get_param('~cancel_within')))
+        within_s = float(rospy.get_param('~cancel_within')) if within_s is None else within_s
+        cancel_after = random.Random(seed).uniform(0.2, within_s)
         rospy.loginfo('%s: cancelled after %.2f sim s (seed %d)', tag, cancel_after, seed)
         self._send(spec)
         self._wait_sim(cancel_after)
