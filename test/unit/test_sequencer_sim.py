@@ -196,6 +196,22 @@ class Recorder(object):
         h.prims.safe_hold = record_hold
 
 
+def test_a_late_robot_thread_is_not_a_silent_robot():
+    """A loaded machine deschedules the simulated robot's thread: its states
+    come late in wall time but on time in robot time. The goal must not
+    abort with "no robot state" (CI did, at 0.32 s); the stall is made by
+    holding the robot's lock for twice the feedback timeout mid-clamp."""
+    with fake_harness(SPEEDUP, 1.45) as h:
+        worker = threading.Thread(target=lambda: h.__dict__.update(outcome=run_bounded(
+            h, h.goal(CLAMP_STRAIGHT))[1]), daemon=True)
+        worker.start()
+        assert wait_robot(h, lambda: len(h.prims.executed) >= 2, 30.0), h.prims.executed
+        with h._lock:
+            time.sleep(2 * h.feed.feedback_timeout)    # the fault: the robot thread is stalled
+        worker.join(HANG_BOUND_S)
+        assert h.outcome.status == 'succeeded', h.outcome.message
+
+
 @pytest.mark.parametrize('orientation, goals', [
     (1.45, [dict(name=CLAMP_STRAIGHT)]),
     (math.pi / 2, [dict(name=CLAMP_STRAIGHT), dict(name=DRIVE, distance=2000.0, speed=150.0)]),

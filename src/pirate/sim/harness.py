@@ -6,7 +6,16 @@ calls. A robot thread steps the model and pushes a state every Mega cycle
 (0.1 s of robot time), pacing itself at ``speedup`` times real time, so the
 wall-clock feedback watchdog behaves as with a real robot. Used by the fast
 test tier and the benchmarks; the rostests cover the ROS wiring.
+
+The feedback watchdog and the Mega's watchdog read :meth:`SimHarness.clock`,
+the robot's wall clock: the monotonic clock held back while the robot thread
+runs late. On a loaded machine a simulated robot that falls behind its
+pacing is late, not silent (CI saw "no robot state for 0.32 s" from a robot
+thread that was merely descheduled); a robot that steps on time but reports
+nothing (``frozen``, a silent board) is still noticed after the same wall
+time as a real one.
 """
+import math
 import threading
 import time
 
@@ -54,6 +63,7 @@ class SimHarness(object):
         self.speedup = speedup
         self._lock = threading.RLock()
         self.watchdog = MegaWatchdog()
+        self._due = math.inf          # wall instant the robot's next cycle is due
         self.wires = {name: _Wire(lambda name=name: self._apply(name))
                       for name in ('setpoint', 'control', 'limit')}
         self.control = commands.Control(self.wires['control'], list)
@@ -61,7 +71,7 @@ class SimHarness(object):
         self.limit = commands.Limit(self.wires['limit'], list)
         book = GuardBook(*load_files())
         self.feed = RobotFeed(feedback_timeout or book.common['feedback_timeout'],
-                              wall_factor=book.common['wall_timeout_factor'])
+                              clock=self.clock, wall_factor=book.common['wall_timeout_factor'])
         self.setpoint.measured = lambda: self.feed.latest().angles if self.feed.fresh() else None
         self.prims = MotionPrimitives(self.setpoint, self.control, self.limit, self.feed)
         self.feedback = []
@@ -75,6 +85,12 @@ class SimHarness(object):
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._robot_loop, daemon=True)
 
+    def clock(self):
+        """The robot's wall clock (s): monotonic, but never past the instant
+        the robot's next cycle is due, so time the robot thread spends
+        descheduled does not count as the robot's silence."""
+        return min(time.monotonic(), self._due)
+
     def start_robot(self):
         """What the manager does when a goal starts: PLAY and paced arrays."""
         commands.play(self.control, self.setpoint, self.limit)
@@ -84,27 +100,26 @@ class SimHarness(object):
         """The Mega: take the arrays (STOP to every board while its watchdog is tripped)."""
         with self._lock:
             if which == 'setpoint':
-                self.watchdog.setpoint_arrived(time.monotonic())
+                self.watchdog.setpoint_arrived(self.clock())
             self.model.command(self.setpoint.get_all(), self.watchdog.boards_see(self.control.get_all()),
                                self.limit.get_all())
 
     def _robot_loop(self):
         wall_next = time.monotonic()
-        cycle = 0
         while not self._stop.is_set():
-            if self.watchdog.poll(time.monotonic()):
+            if self.watchdog.poll(self.clock()):
                 self._apply()
             with self._lock:
                 for _ in range(STEPS_PER_CYCLE):
                     self.model.step(PICO_PERIOD_S)
                 self.robot_time += PICO_PERIOD_S * STEPS_PER_CYCLE
                 states = [(b, self.model.small_state(b)) for b in tables.BOARDS]
-            cycle += 1
             if not self.frozen:
                 self._report([(b, d) for b, d in states if b not in self.silent])
             self.setpoint.tick()       # the manager's 10 Hz timer, robot time
             self.limit.tick()
             wall_next += PICO_PERIOD_S * STEPS_PER_CYCLE / self.speedup
+            self._due = wall_next
             time.sleep(max(0.0, wall_next - time.monotonic()))
 
     def _report(self, states):
