@@ -31,8 +31,10 @@ import sys
 import threading
 import time
 import unittest
+import xmlrpc.client
 
 import actionlib
+import rosgraph
 import rosnode
 import rospy
 import rostest
@@ -144,6 +146,17 @@ class SequencerTest(unittest.TestCase):
     def _wait_sim(self, sim_s):
         start = rospy.get_time()
         self._wait(lambda: rospy.get_time() - start >= sim_s, '%.1f sim s' % sim_s, GOAL_WALL_S)
+
+    def _stall_simulator(self, wall_s, node='/sim_robot'):
+        """The fault a loaded laptop makes: the simulator's process stopped
+        (SIGSTOP) for ``wall_s`` wall seconds, then continued. Its /clock
+        stands still with it: the robot is late, not silent."""
+        pid = xmlrpc.client.ServerProxy(rosgraph.Master('/test').lookupNode(node)).getPid('/test')[2]
+        os.kill(pid, signal.SIGSTOP)
+        try:
+            time.sleep(wall_s)          # the stall itself (the fault), not a synchronisation
+        finally:
+            os.kill(pid, signal.SIGCONT)
 
     def _safe_after(self, since):
         with self.lock:

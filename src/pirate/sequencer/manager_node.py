@@ -31,6 +31,7 @@ from pirate.robot import commands
 from pirate.robot.writers import OneWriter
 from pirate.state.assembler import pab_blocker
 from pirate.state.feed import RobotFeed, RobotView
+from pirate.state.robot_clock import silence_clock
 from pirate.sequencer.guards import BadConfig, GuardBook
 from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, PirateGoal,
                         PirateResult, PrimitiveStep, RobotState, SetpointArray)
@@ -103,7 +104,8 @@ class PirateManager(object):
             rospy.Publisher(names.LIMITS_TOPIC, LimitArray, queue_size=1),
             lambda data: LimitArray(data=data), log=log)
         book = GuardBook(rospy.get_param('~guards'), rospy.get_param('~sequencer'))
-        self.feed = RobotFeed(book.common['feedback_timeout'], wall_factor=book.common['wall_timeout_factor'])
+        self.feed = RobotFeed(book.common['feedback_timeout'], wall_factor=book.common['wall_timeout_factor'],
+                              robot_clock=silence_clock(rospy.get_param('/use_sim_time', False), rospy.get_time))
         self.setpoint.measured = self._measured_angles   # Play holds position joints where they are
         self.prims = MotionPrimitives(self.setpoint, self.control, self.limit, self.feed)
         self.server = PirateServer(self.prims, self.feed, book, self._start_robot,

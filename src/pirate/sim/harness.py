@@ -7,20 +7,20 @@ calls. A robot thread steps the model and pushes a state every Mega cycle
 wall-clock feedback watchdog behaves as with a real robot. Used by the fast
 test tier and the benchmarks; the rostests cover the ROS wiring.
 
-The feedback watchdog and the Mega's watchdog read :meth:`SimHarness.clock`,
-the robot's wall clock: the monotonic clock held back while the robot thread
-runs late. On a loaded machine a simulated robot that falls behind its
+The feedback watchdog and the Mega's watchdog measure silence on
+``SimHarness.clock``, a :class:`pirate.state.robot_clock.RobotClock` over the
+robot's time: on a loaded machine a simulated robot that falls behind its
 pacing is late, not silent (CI saw "no robot state for 0.32 s" from a robot
 thread that was merely descheduled); a robot that steps on time but reports
 nothing (``frozen``, a silent board) is still noticed after the same wall
 time as a real one.
 """
-import math
 import threading
 import time
 
 from pirate.robot import commands, tables
 from pirate.state.feed import RobotFeed, RobotView
+from pirate.state.robot_clock import RobotClock
 from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.primitives import MotionPrimitives
 from pirate.sequencer.server import PirateServer
@@ -63,7 +63,8 @@ class SimHarness(object):
         self.speedup = speedup
         self._lock = threading.RLock()
         self.watchdog = MegaWatchdog()
-        self._due = math.inf          # wall instant the robot's next cycle is due
+        self.robot_time = 1.0
+        self.clock = RobotClock(lambda: self.robot_time)
         self.wires = {name: _Wire(lambda name=name: self._apply(name))
                       for name in ('setpoint', 'control', 'limit')}
         self.control = commands.Control(self.wires['control'], list)
@@ -71,7 +72,7 @@ class SimHarness(object):
         self.limit = commands.Limit(self.wires['limit'], list)
         book = GuardBook(*load_files())
         self.feed = RobotFeed(feedback_timeout or book.common['feedback_timeout'],
-                              clock=self.clock, wall_factor=book.common['wall_timeout_factor'])
+                              wall_factor=book.common['wall_timeout_factor'], robot_clock=self.clock)
         self.setpoint.measured = lambda: self.feed.latest().angles if self.feed.fresh() else None
         self.prims = MotionPrimitives(self.setpoint, self.control, self.limit, self.feed)
         self.feedback = []
@@ -79,17 +80,10 @@ class SimHarness(object):
         self.server = PirateServer(self.prims, self.feed, book, self.start_robot,
                                    feedback=self.feedback.append, log=self.log.append)
         self.assembler = StateAssembler()
-        self.robot_time = 1.0
         self.frozen = False           # True: the robot stops reporting
         self.silent = set()           # boards that stop answering (the Mega skips them)
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._robot_loop, daemon=True)
-
-    def clock(self):
-        """The robot's wall clock (s): monotonic, but never past the instant
-        the robot's next cycle is due, so time the robot thread spends
-        descheduled does not count as the robot's silence."""
-        return min(time.monotonic(), self._due)
 
     def start_robot(self):
         """What the manager does when a goal starts: PLAY and paced arrays."""
@@ -119,7 +113,6 @@ class SimHarness(object):
             self.setpoint.tick()       # the manager's 10 Hz timer, robot time
             self.limit.tick()
             wall_next += PICO_PERIOD_S * STEPS_PER_CYCLE / self.speedup
-            self._due = wall_next
             time.sleep(max(0.0, wall_next - time.monotonic()))
 
     def _report(self, states):

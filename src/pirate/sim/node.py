@@ -10,7 +10,9 @@ Time: with ``use_sim_time`` the node owns ``/clock`` and advances it by
 without it, it runs in wall time and ``~rate`` must be 1.
 
 The Mega's watchdog (:mod:`pirate.sim.watchdog`) stops every board when no
-setpoint array arrives for 0.25 s (wall clock), as the firmware does.
+setpoint array arrives for 0.25 s (wall clock), as the firmware does; the
+time this node itself stood still (descheduled on a loaded laptop) does not
+count (:class:`pirate.state.robot_clock.RobotClock` over its sim time).
 
 Private params: ``~world`` (a world file or a name under config/worlds/:
 the pipe network of the physics twin; empty: the straight pipe of
@@ -34,6 +36,7 @@ from pirate.robot import tables
 from pirate.msg import ControlArray, LimitArray, SetpointArray, SmallState
 from pirate.sim.robot_end import make_robot
 from pirate.sim.watchdog import MegaWatchdog
+from pirate.state.robot_clock import RobotClock
 
 PICO_PERIOD_S = 0.02    # PICO control loops, 50 Hz
 MEGA_PERIOD_S = 0.1     # Mega refresh of all nine boards, about 10 Hz
@@ -66,6 +69,8 @@ class SimRobotNode(object):
         self._arrays = [list(self.model.setpoints), list(self.model.modes), list(self.model.limits)]
         self._logged = set()
         self.watchdog = MegaWatchdog()
+        self.sim_t = CLOCK_START_S
+        self._clock = RobotClock(lambda: self.sim_t)
         self._state_pub = rospy.Publisher(names.SMALL_STATE_TOPIC, SmallState, queue_size=len(tables.BOARDS) * 4)
         self._clock_pub = rospy.Publisher('/clock', Clock, queue_size=1) if self.sim_time else None
         self._truth_pub = (rospy.Publisher(names.GROUND_TRUTH_TOPIC, PoseArray, queue_size=2)
@@ -78,7 +83,7 @@ class SimRobotNode(object):
         with self._lock:
             self._arrays[which] = list(msg.data)
             if which == 0:
-                self.watchdog.setpoint_arrived(time.monotonic())
+                self.watchdog.setpoint_arrived(self._clock())
             reasons = self._command()
         self._log_once(reasons)
 
@@ -102,7 +107,6 @@ class SimRobotNode(object):
     def spin(self):
         """Step the model; publish states every Mega cycle and /clock."""
         steps_per_cycle = int(round(MEGA_PERIOD_S / PICO_PERIOD_S))
-        sim_t = CLOCK_START_S
         wall_next = time.monotonic()
         rospy.loginfo('sim_robot: %d mm pipe, roll %.2f rad, rate x%.1f%s',
                       round(self.model.pipe_diameter_m * 1000), self.model.rear_roll, self.rate,
@@ -110,15 +114,15 @@ class SimRobotNode(object):
         step = 0
         while not rospy.is_shutdown():
             with self._lock:
-                if self.watchdog.poll(time.monotonic()):
+                if self.watchdog.poll(self._clock()):
                     self._command()
                     rospy.logwarn('sim_robot: no setpoint array for %.2f s: every board stopped '
                                   '(Mega watchdog)', self.watchdog.timeout_s)
                 self.model.step(PICO_PERIOD_S)
-            sim_t += PICO_PERIOD_S
+            self.sim_t += PICO_PERIOD_S
             step += 1
             if self._clock_pub:
-                self._clock_pub.publish(Clock(clock=rospy.Time.from_sec(sim_t)))
+                self._clock_pub.publish(Clock(clock=rospy.Time.from_sec(self.sim_t)))
             if step % steps_per_cycle == 0:
                 self._publish_states()
             wall_next += PICO_PERIOD_S / self.rate

@@ -15,6 +15,10 @@ state, on cancel, and a few times a second to check two clocks:
   so no primitive outlives its timeout because robot time stopped or
   crawls (issue 14.6).
 
+The watchdog's silence is measured on ``robot_clock`` (default: the wall
+clock): for a simulated robot, :class:`pirate.state.robot_clock.RobotClock`,
+so a simulator running late is not taken for a silent robot.
+
 Pure Python: no ROS; the manager pushes states in.
 """
 import collections
@@ -52,10 +56,11 @@ class FeedbackLost(Interrupted):
 class RobotFeed(object):
     """Newest :data:`RobotView`, cancel flag, and guard waiting."""
 
-    def __init__(self, feedback_timeout=0.3, clock=time.monotonic, wall_factor=2.0):
+    def __init__(self, feedback_timeout=0.3, clock=time.monotonic, wall_factor=2.0, robot_clock=None):
         self.feedback_timeout = feedback_timeout
         self.wall_factor = wall_factor
         self._clock = clock
+        self._robot_clock = robot_clock or clock
         self._cond = threading.Condition()
         self._latest = None
         self._arrival = -math.inf
@@ -66,7 +71,7 @@ class RobotFeed(object):
         """A new state from the robot (called by the subscriber)."""
         with self._cond:
             self._latest = view
-            self._arrival = self._clock()
+            self._arrival = self._robot_clock()
             self._lost = None
             self._cond.notify_all()
 
@@ -90,12 +95,12 @@ class RobotFeed(object):
     def fresh(self):
         """True when a state arrived within the feedback timeout."""
         with self._cond:
-            return self._lost is None and self._clock() - self._arrival <= self.feedback_timeout
+            return self._lost is None and self._robot_clock() - self._arrival <= self.feedback_timeout
 
     def since_last_state(self):
-        """Wall seconds since the newest state (inf before the first)."""
+        """Seconds of the robot's clock since the newest state (inf before the first)."""
         with self._cond:
-            return self._clock() - self._arrival
+            return self._robot_clock() - self._arrival
 
     def cancel(self):
         """Ask the running wait (and every later one) to end at once."""
@@ -123,7 +128,7 @@ class RobotFeed(object):
             raise Cancelled('cancelled by the operator')
         if self._lost is not None:
             raise FeedbackLost('robot state stale: %s' % self._lost)
-        silent = self._clock() - self._arrival
+        silent = self._robot_clock() - self._arrival
         if silent > self.feedback_timeout:
             raise FeedbackLost('no robot state for %.2f s (limit %.2f s)'
                                % (silent, self.feedback_timeout))

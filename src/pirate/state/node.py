@@ -3,13 +3,13 @@
 Subscribes the per-board Small State, and at the end of every Mega refresh
 cycle publishes pirate/RobotState (for event-driven guards),
 sensor_msgs/JointState (RViz) and sensor_msgs/Imu (orientation). Serves the
-joint-sensors and IMU blackboards. A 10 Hz wall-clock check republishes the
-state marked ``stale`` when the robot stops reporting, so nobody mistakes old
-angles for fresh ones.
+joint-sensors and IMU blackboards. A 10 Hz check republishes the state
+marked ``stale`` when the robot stops reporting, so nobody mistakes old
+angles for fresh ones; silence is timed on the wall clock, or for a
+simulated robot on :mod:`pirate.state.robot_clock` (late is not silent).
 """
 import math
 import threading
-import time
 
 import diagnostic_updater
 import rospy
@@ -20,6 +20,7 @@ from pirate.robot import tables
 from pirate.msg import RobotState, SmallState
 from pirate.srv import ImuSensor, ImuSensorResponse, JointSensors, JointSensorsResponse
 from pirate.state.assembler import BadState, StateAssembler, stale_reason
+from pirate.state.robot_clock import silence_clock
 
 
 def roll_quaternion(orientation):
@@ -37,6 +38,7 @@ class PirateStateNode(object):
 
     def __init__(self):
         self.assembler = StateAssembler(rospy.get_param('~stale_after', 0.3))
+        self._clock = silence_clock(rospy.get_param('/use_sim_time', False), rospy.get_time)
         self._lock = threading.Lock()
         self._logged = set()
         self._was_stale = False
@@ -60,12 +62,12 @@ class PirateStateNode(object):
 
     def _snapshot(self):
         with self._lock:
-            return self.assembler.snapshot(time.monotonic())
+            return self.assembler.snapshot(self._clock())
 
     def _on_small_state(self, msg):
         try:
             with self._lock:
-                complete = self.assembler.update(msg.board, msg.data, time.monotonic())
+                complete = self.assembler.update(msg.board, msg.data, self._clock())
         except BadState as bad:
             if str(bad) not in self._logged:
                 self._logged.add(str(bad))
