@@ -31,7 +31,7 @@ from pirate.robot import commands
 from pirate.robot.writers import OneWriter
 from pirate.state.assembler import pab_blocker
 from pirate.state.feed import RobotFeed, RobotView
-from pirate.state.robot_clock import silence_clock
+from pirate.state.ros_clock import silence_clock
 from pirate.sequencer.guards import BadConfig, GuardBook
 from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, PirateGoal,
                         PirateResult, PrimitiveStep, RobotState, SetpointArray)
@@ -105,7 +105,7 @@ class PirateManager(object):
             lambda data: LimitArray(data=data), log=log)
         book = GuardBook(rospy.get_param('~guards'), rospy.get_param('~sequencer'))
         self.feed = RobotFeed(book.common['feedback_timeout'], wall_factor=book.common['wall_timeout_factor'],
-                              robot_clock=silence_clock(rospy.get_param('/use_sim_time', False), rospy.get_time))
+                              robot_clock=silence_clock())
         self.setpoint.measured = self._measured_angles   # Play holds position joints where they are
         self.prims = MotionPrimitives(self.setpoint, self.control, self.limit, self.feed)
         self.server = PirateServer(self.prims, self.feed, book, self._start_robot,

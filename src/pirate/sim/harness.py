@@ -8,8 +8,8 @@ wall-clock feedback watchdog behaves as with a real robot. Used by the fast
 test tier and the benchmarks; the rostests cover the ROS wiring.
 
 The feedback watchdog and the Mega's watchdog measure silence on
-``SimHarness.clock``, a :class:`pirate.state.robot_clock.RobotClock` over the
-robot's time: on a loaded machine a simulated robot that falls behind its
+``SimHarness.clock``, a :class:`pirate.state.robot_clock.RobotClock` ticked
+by every robot cycle: on a loaded machine a simulated robot that falls behind its
 pacing is late, not silent (CI saw "no robot state for 0.32 s" from a robot
 thread that was merely descheduled); a robot that steps on time but reports
 nothing (``frozen``, a silent board) is still noticed after the same wall
@@ -64,7 +64,7 @@ class SimHarness(object):
         self._lock = threading.RLock()
         self.watchdog = MegaWatchdog()
         self.robot_time = 1.0
-        self.clock = RobotClock(lambda: self.robot_time)
+        self.clock = RobotClock()
         self.wires = {name: _Wire(lambda name=name: self._apply(name))
                       for name in ('setpoint', 'control', 'limit')}
         self.control = commands.Control(self.wires['control'], list)
@@ -108,6 +108,7 @@ class SimHarness(object):
                     self.model.step(PICO_PERIOD_S)
                 self.robot_time += PICO_PERIOD_S * STEPS_PER_CYCLE
                 states = [(b, self.model.small_state(b)) for b in tables.BOARDS]
+            self.clock.tick()
             if not self.frozen:
                 self._report([(b, d) for b, d in states if b not in self.silent])
             self.setpoint.tick()       # the manager's 10 Hz timer, robot time

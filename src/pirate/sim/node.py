@@ -12,7 +12,7 @@ without it, it runs in wall time and ``~rate`` must be 1.
 The Mega's watchdog (:mod:`pirate.sim.watchdog`) stops every board when no
 setpoint array arrives for 0.25 s (wall clock), as the firmware does; the
 time this node itself stood still (descheduled on a loaded laptop) does not
-count (:class:`pirate.state.robot_clock.RobotClock` over its sim time).
+count (:class:`pirate.state.robot_clock.RobotClock`, ticked by each step).
 
 Private params: ``~world`` (a world file or a name under config/worlds/:
 the pipe network of the physics twin; empty: the straight pipe of
@@ -69,8 +69,7 @@ class SimRobotNode(object):
         self._arrays = [list(self.model.setpoints), list(self.model.modes), list(self.model.limits)]
         self._logged = set()
         self.watchdog = MegaWatchdog()
-        self.sim_t = CLOCK_START_S
-        self._clock = RobotClock(lambda: self.sim_t)
+        self._clock = RobotClock()
         self._state_pub = rospy.Publisher(names.SMALL_STATE_TOPIC, SmallState, queue_size=len(tables.BOARDS) * 4)
         self._clock_pub = rospy.Publisher('/clock', Clock, queue_size=1) if self.sim_time else None
         self._truth_pub = (rospy.Publisher(names.GROUND_TRUTH_TOPIC, PoseArray, queue_size=2)
@@ -107,6 +106,7 @@ class SimRobotNode(object):
     def spin(self):
         """Step the model; publish states every Mega cycle and /clock."""
         steps_per_cycle = int(round(MEGA_PERIOD_S / PICO_PERIOD_S))
+        sim_t = CLOCK_START_S
         wall_next = time.monotonic()
         rospy.loginfo('sim_robot: %d mm pipe, roll %.2f rad, rate x%.1f%s',
                       round(self.model.pipe_diameter_m * 1000), self.model.rear_roll, self.rate,
@@ -119,10 +119,11 @@ class SimRobotNode(object):
                     rospy.logwarn('sim_robot: no setpoint array for %.2f s: every board stopped '
                                   '(Mega watchdog)', self.watchdog.timeout_s)
                 self.model.step(PICO_PERIOD_S)
-            self.sim_t += PICO_PERIOD_S
+            sim_t += PICO_PERIOD_S
+            self._clock.tick()
             step += 1
             if self._clock_pub:
-                self._clock_pub.publish(Clock(clock=rospy.Time.from_sec(self.sim_t)))
+                self._clock_pub.publish(Clock(clock=rospy.Time.from_sec(sim_t)))
             if step % steps_per_cycle == 0:
                 self._publish_states()
             wall_next += PICO_PERIOD_S / self.rate

@@ -20,7 +20,7 @@ from pirate.robot import tables
 from pirate.msg import RobotState, SmallState
 from pirate.srv import ImuSensor, ImuSensorResponse, JointSensors, JointSensorsResponse
 from pirate.state.assembler import BadState, StateAssembler, stale_reason
-from pirate.state.robot_clock import silence_clock
+from pirate.state.ros_clock import silence_clock
 
 
 def roll_quaternion(orientation):
@@ -38,7 +38,7 @@ class PirateStateNode(object):
 
     def __init__(self):
         self.assembler = StateAssembler(rospy.get_param('~stale_after', 0.3))
-        self._clock = silence_clock(rospy.get_param('/use_sim_time', False), rospy.get_time)
+        self._clock = silence_clock()
         self._lock = threading.Lock()
         self._logged = set()
         self._was_stale = False
