@@ -189,7 +189,7 @@ class Clamp(Pab):
             MOVING_FRONT: self._move_front,
             CLAMPING_REAR: lambda ctx: self._clamp(ctx, 'rear', self._full_row(ctx), FULL),
             CLAMPING_FRONT: lambda ctx: self._clamp(ctx, 'front', self._full_row(ctx), FULL),
-            CLAMPING_REAR_CUSTOM: lambda ctx: self._clamp(ctx, 'rear', 'clamp_rear_custom', CUSTOM),
+            CLAMPING_REAR_CUSTOM: lambda ctx: self._clamp_custom(ctx, 'rear', 'clamp_rear_custom'),
             CLAMPING_FRONT_CUSTOM: self._clamp_front_custom,
             UNCLAMPING_REAR: lambda ctx: self._unclamp(ctx, 'rear'),
             UNCLAMPING_FRONT: lambda ctx: self._unclamp(ctx, 'front'),
@@ -257,8 +257,22 @@ class Clamp(Pab):
 
     def _clamp_front_custom(self, ctx):
         kind = 'clamp_front_custom' if self.front_custom_done else 'clamp_front_custom_first'
-        self._clamp(ctx, 'front', kind, CUSTOM)
+        self._clamp_custom(ctx, 'front', kind)
         self.front_custom_done = True
+
+    def _clamp_custom(self, ctx, part, kind):
+        """A custom clamp (Table 5.3) with the guards of the part's own roll.
+
+        The report measured its front custom clamps with the front 0.7 rad
+        off a side (Clamp Straight's eq 5.1 saturates there); Clamp Sideways
+        turns the front onto the side itself, where its V meets the walls
+        at the chord (twin, 90 mm, LEFT from 150 deg: front roll 3.133 rad,
+        Bend I -0.638 rad with its spring at 240 mNm, short of -0.69), so a
+        ``<kind>_sideways`` row (derived from the chord) takes over there.
+        """
+        view = ctx.feed.latest()
+        roll = clamp_state.part_roll(part, view.angles, view.orientation)
+        self._clamp(ctx, part, clamp_state.row_at(ctx.guards, kind, roll), CUSTOM)
 
     def _unclamp(self, ctx, part):
         ctx.prims.unclamp(part, partial=True)
