@@ -235,10 +235,26 @@ class Clamp(Pab):
             if self.clamp[part] == NONE:
                 for bend in CLAMP_BENDS[part]:
                     ctx.prims.change_control_mode(bend, 'torque')
-        if view.angles['front_tilt'] >= ctx.guards.move(self._lift_row(ctx)).guard:
-            self.lift = 2
+        self.lift = self._lift_sensed(ctx, view.angles['front_tilt'])
         ctx.prims.change_control_mode('rotation', 'position')
         ctx.prims.change_control_mode('front_tilt', 'pwm')
+
+    def _lift_sensed(self, ctx, tilt):
+        """Lift stage (``lift`` fact) the front tilt (rad) already stands at.
+
+        The stages are those this start's sequence lifts through: the
+        nominal lift of the target, or the two non-nominal lifts (Table
+        5.3). A front left at the sideways lift (0.16 rad) counted as fully
+        lifted for a non-nominal start, so its later custom clamps ran with
+        the front short of move_front_later, and there the twin's front V
+        pressed the wall short of the guard (90 mm, RIGHT from 180 deg,
+        front lifted: Bend I -0.680 rad against -0.72, front tilt 0.17).
+        """
+        if self.nominal_start:
+            stages = ((2, self._lift_row(ctx)),)
+        else:
+            stages = ((2, 'move_front_later'), (1, 'move_front_first'))
+        return next((stage for stage, row in stages if tilt >= ctx.guards.move(row).guard), 0)
 
     def _move_front(self, ctx):
         if self.nominal_start:
