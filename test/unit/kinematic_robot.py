@@ -6,13 +6,20 @@ and the outer spring to pressing. Feed and primitives in one object, for
 running a PAB's table on the logic alone (no physics, no timing).
 """
 from pirate.robot import safety
-from pirate.state.feed import RobotView
+from pirate.state.feed import RobotView, TimedOut
+from pirate.sequencer import clamp_state
 from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.primitives import Refused, clamp_name, report_kind
 from pirate.sequencer.server import PabContext
 
 BOOK = GuardBook(*load_files())
 PRESS_MNM = 241.0       # the outer spring on the wall (twin, clamp torque 256)
+#: Outer bend angle (rad) where the front V meets the walls with the front
+#: part lying on a side, per pipe diameter: the V spans the chord there,
+#: not the diameter (twin, 90 mm, bench/pab_clamp_probe 90 150 left:
+#: Bend I -0.638 rad, spring 240 mNm). A clamp whose guard lies beyond it
+#: is not reached.
+FRONT_WALL_ON_SIDE_RAD = {90: -0.638}
 
 
 class KinematicRobot(object):
@@ -20,6 +27,7 @@ class KinematicRobot(object):
 
     def __init__(self, rear_roll, rotation, front_tilt, pipe_diameter=90):
         self.guards = BOOK.for_diameter(pipe_diameter)
+        self.front_wall_on_side = FRONT_WALL_ON_SIDE_RAD.get(pipe_diameter)
         self.rear, self.rotation = rear_roll, rotation
         self.front = rear_roll - rotation
         self.angles = {j: 0.0 for j in ('front_tilt', 'bend_i', 'bend_ii', 'rotation', 'bend_iii', 'bend_iv')}
@@ -60,6 +68,10 @@ class KinematicRobot(object):
     def clamp(self, part, kind='clamp'):
         self.executed.append(clamp_name(kind, part))
         pair = self.guards.pair(kind, part)
+        if (part == 'front' and self.front_wall_on_side is not None and clamp_state.on_side(self.guards, self.front)
+                and pair.outer.guard < self.front_wall_on_side):
+            raise TimedOut('%s: the V meets the walls at %.3f rad on a side, short of %.3f'
+                           % (clamp_name(kind, part), self.front_wall_on_side, pair.outer.guard))
         self.angles.update({pair.outer.joint: pair.outer.guard - 0.01, pair.inner.joint: pair.inner.guard + 0.01})
         self.efforts[pair.outer.joint] = PRESS_MNM
         self.clamped[part] = True

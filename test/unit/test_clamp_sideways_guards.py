@@ -68,3 +68,16 @@ def test_110_mm_non_nominal_rows_are_derived_from_the_90_mm_ones_and_the_geometr
     later = g90.move('move_front_later').guard * g110.move('move_front').guard / g90.move('move_front').guard
     assert g110.move('move_front_first').guard == pytest.approx(first, abs=0.01)
     assert g110.move('move_front_later').guard == pytest.approx(later, abs=0.01)
+
+
+def test_90_mm_front_custom_rows_on_a_side_are_the_chord_s():
+    """The report measured its front custom clamps 0.7 rad off a side; on the
+    side itself the V spans the chord, so the custom guard is clamp_sideways'."""
+    g90 = BOOK.for_diameter(90)
+    sideways = g90.pair('clamp_sideways', 'front')
+    for row in ('clamp_front_custom_first', 'clamp_front_custom'):
+        pair = g90.pair(row + cs.SIDEWAYS, 'front')
+        assert (pair.outer.guard, pair.inner.guard) == (sideways.outer.guard, sideways.inner.guard)
+        assert pair.outer.guard > g90.pair(row, 'front').outer.guard      # opener than the report's off-side row
+        assert cs.row_at(g90, row, math.pi - 0.05) == row + cs.SIDEWAYS
+        assert cs.row_at(g90, row, math.pi - 0.7) == row

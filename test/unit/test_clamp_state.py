@@ -195,3 +195,22 @@ def test_a_clamp_on_a_side_is_full_only_lying_on_a_side(roll, state):
     pose, efforts = SIDEWAYS_90
     assert cs.classify(BOOK.for_diameter(90), pose, efforts, roll) == state
     assert cs.classify(BOOK.for_diameter(90), pose, {}, roll) == (cs.PARTLY, cs.PARTLY)   # short of the wall
+
+
+#: Twin, 90 mm, Clamp Sideways LEFT from 150 deg (bench/pab_clamp_probe 90 150 left),
+#: after "clamp front custom first" on main: the rotation (-0.445 rad) has
+#: put the front on its side (its roll 3.152 rad) while the rear (IMU 2.707
+#: rad) is not; the front V presses the wall at -0.638 rad, short of the
+#: report's -0.69, the rear is clamped.
+FRONT_ON_ITS_SIDE = (dict(bend_i=-0.638, bend_ii=0.410, rotation=-0.445, bend_iii=0.388, bend_iv=-0.839),
+                     dict(bend_i=240.0, bend_ii=-241.0, bend_iii=1.0, bend_iv=241.0), 2.707)
+
+
+def test_each_part_is_judged_by_its_own_roll():
+    guards = BOOK.for_diameter(90)
+    pose, efforts, imu = FRONT_ON_ITS_SIDE
+    assert cs.part_roll('front', angles(**pose), imu) == pytest.approx(3.152)
+    assert cs.part_roll('rear', angles(**pose), imu) == imu
+    assert cs.classify(guards, angles(**pose), efforts, imu) == cs.ClampState(cs.FULL, cs.FULL)
+    aligned = dict(pose, rotation=0.0)       # the same bends with the front at the rear's roll: not on a side
+    assert cs.classify(guards, angles(**aligned), efforts, imu).front == cs.PARTLY

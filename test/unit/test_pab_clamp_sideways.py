@@ -66,3 +66,19 @@ def test_clamp_at_the_target_from_any_roll(side, roll):
     nominal = region_around(GUARDS, 'nominal', target)
     custom = [step for step in robot.executed if 'custom' in step]
     assert bool(custom) == (not nominal[0] <= roll <= nominal[1])   # custom clamps only non-nominal
+
+
+@pytest.mark.parametrize('side, roll', [('RIGHT', math.pi), ('LEFT', 0.0)])
+def test_a_front_left_at_the_sideways_lift_is_lifted_again_before_its_later_custom_clamps(side, roll):
+    """Non-nominal start with the front at the sideways lift (0.16 rad, below
+    Table 5.3's later lift 0.3): the front custom clamps after the first
+    need the front lifted to move_front_later (twin: at 0.17 rad the front V
+    met the wall at -0.680, short of -0.72)."""
+    later = GUARDS.move('move_front_later').guard
+    robot = KinematicRobot(roll, 0.0, front_tilt=GUARDS.move('move_front_sideways').guard)
+    tilts = []
+    clamp = robot.clamp
+    robot.clamp = lambda part, kind='clamp': (tilts.append((kind, robot.angles['front_tilt'])), clamp(part, kind))
+    run(Clamp.for_goal(goal_for(side)), robot, goal_for(side))
+    later_custom = [tilt for kind, tilt in tilts if kind.startswith('clamp_front_custom') and '_first' not in kind]
+    assert later_custom and min(later_custom) >= later, tilts

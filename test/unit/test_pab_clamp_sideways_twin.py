@@ -52,3 +52,21 @@ def test_non_nominal_clamp_straight_in_110_mm_on_the_twin(roll):
         assert executed[-3:] == ['unclamp front partial', 'rotate front (align)', 'clamp front']
         assert_clamped_straight(h)
         assert h.server.status() == 'Idle Clamped'
+
+
+def test_clamp_sideways_from_30_deg_off_its_side_on_the_twin():
+    """90 mm, LEFT from 150 deg (bench/pab_clamp_sweep's failure on main):
+    eq 5.1 turns the front onto the side, where its V meets the walls at
+    the chord (-0.638 rad, short of the report's -0.69 measured 0.7 rad off
+    the side); the front custom clamp takes the chord's guard there and the
+    goal ends clamped at the target, both V's on the wall (ground truth)."""
+    with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=math.radians(150)) as h:
+        robot_wait(h, 1.0)
+        reason, outcome = run_bounded(h, h.goal(CLAMP_SIDEWAYS, pipe_diameter=90, option=LEFT))
+        assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+        assert 'clamp front custom first' in h.prims.executed
+        robot_wait(h, 2.0)
+        truth = h.ground_truth()
+        assert abs(truth['roll'] - math.pi) < 0.1 and abs(truth['front_roll'] - math.pi) < 0.1, truth
+        assert APEX_WHEELS <= set(truth['wheel_contacts'])
+        assert h.server.status() == 'Idle Clamped'

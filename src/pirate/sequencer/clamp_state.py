@@ -11,12 +11,14 @@ Per part (front = Bend I/II, rear = Bend IV/III, SPEC 2) the classes are:
   bend's spring presses toward the wall (effort, signed like the clamp
   setpoint of Table 5.2, at least ``spring_clamp_mnm``);
 - ``custom``: the same with a custom clamp guard (Table 5.3) instead;
-- lying on a side (the rear's IMU roll within the nominal band around 0 or
-  pi, Fig 4.7) the V spans the pipe's chord at the axis height, not its
+- lying on a side (the part's roll within the nominal band around 0 or
+  pi, Fig 4.7; the rear's roll is the IMU's, the front's that less the
+  rotation) the V spans the pipe's chord at the axis height, not its
   diameter, and meets the walls short of the full guard: there ``full``
   uses the ``clamp_sideways`` row (derived from that chord, see
   config/guards_<mm>.yaml), so a Clamp Sideways reads as clamped and the
-  server accepts Drive after it;
+  server accepts Drive after it; a custom row with a ``_sideways`` twin
+  uses that twin on a side the same way;
 - ``free``: both bends back inside the full unclamp guard (give or take
   ``free_margin_rad``) AND neither spring pushes in the clamping direction
   (``spring_contact_mnm``);
@@ -98,6 +100,16 @@ def on_side(guards, orientation):
     return any(abs(math.remainder(orientation - side, 2 * math.pi)) <= half for side in SIDES_RAD)
 
 
+def part_roll(part, angles, orientation):
+    """Roll (rad, Fig 4.7) of ``part`` ('front'/'rear') from what the robot
+    senses: the rear's is the IMU's ``orientation``; the front's is the
+    rear's less the rotation (Table 4.5: theta = rear roll - front roll).
+    None when the orientation is unknown."""
+    if orientation is None or part == 'rear':
+        return orientation
+    return orientation - angles.get('rotation', 0.0)
+
+
 def row_at(guards, row, orientation=None):
     """Guard ``row`` for a robot at roll ``orientation`` (rad): ``<row>_sideways``
     when it lies on a side and the diameter has that row, else ``row``."""
@@ -112,11 +124,14 @@ def full_row(guards, orientation=None):
 
 def classify_part(guards, part, angles, efforts, orientation=None):
     """Class of ``part`` ('front'/'rear') from joint ``angles`` (rad), ``efforts`` (mNm)
-    and the rear's roll ``orientation`` (rad; None: upright guards)."""
-    if clamped(guards, guards.pair(full_row(guards, orientation), part), angles, efforts):
+    and the rear's roll ``orientation`` (rad; None: upright guards). Each
+    part is judged by the rows of its own roll (:func:`part_roll`): the
+    rotation can put the front on a side while the rear is not."""
+    roll = part_roll(part, angles, orientation)
+    if clamped(guards, guards.pair(full_row(guards, roll), part), angles, efforts):
         return FULL
     for row in CUSTOM_ROWS[part]:
-        if guards.has(row) and clamped(guards, guards.pair(row, part), angles, efforts):
+        if guards.has(row) and clamped(guards, guards.pair(row_at(guards, row, roll), part), angles, efforts):
             return CUSTOM
     if guards.pair('unclamp', part).opened(angles, free_margin_rad(guards)) and not pressing(guards, part, efforts):
         return FREE

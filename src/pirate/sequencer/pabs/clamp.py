@@ -189,7 +189,7 @@ class Clamp(Pab):
             MOVING_FRONT: self._move_front,
             CLAMPING_REAR: lambda ctx: self._clamp(ctx, 'rear', self._full_row(ctx), FULL),
             CLAMPING_FRONT: lambda ctx: self._clamp(ctx, 'front', self._full_row(ctx), FULL),
-            CLAMPING_REAR_CUSTOM: lambda ctx: self._clamp(ctx, 'rear', 'clamp_rear_custom', CUSTOM),
+            CLAMPING_REAR_CUSTOM: lambda ctx: self._clamp_custom(ctx, 'rear', 'clamp_rear_custom'),
             CLAMPING_FRONT_CUSTOM: self._clamp_front_custom,
             UNCLAMPING_REAR: lambda ctx: self._unclamp(ctx, 'rear'),
             UNCLAMPING_FRONT: lambda ctx: self._unclamp(ctx, 'front'),
@@ -235,10 +235,26 @@ class Clamp(Pab):
             if self.clamp[part] == NONE:
                 for bend in CLAMP_BENDS[part]:
                     ctx.prims.change_control_mode(bend, 'torque')
-        if view.angles['front_tilt'] >= ctx.guards.move(self._lift_row(ctx)).guard:
-            self.lift = 2
+        self.lift = self._lift_sensed(ctx, view.angles['front_tilt'])
         ctx.prims.change_control_mode('rotation', 'position')
         ctx.prims.change_control_mode('front_tilt', 'pwm')
+
+    def _lift_sensed(self, ctx, tilt):
+        """Lift stage (``lift`` fact) the front tilt (rad) already stands at.
+
+        The stages are those this start's sequence lifts through: the
+        nominal lift of the target, or the two non-nominal lifts (Table
+        5.3). A front left at the sideways lift (0.16 rad) counted as fully
+        lifted for a non-nominal start, so its later custom clamps ran with
+        the front short of move_front_later, and there the twin's front V
+        pressed the wall short of the guard (90 mm, RIGHT from 180 deg,
+        front lifted: Bend I -0.680 rad against -0.72, front tilt 0.17).
+        """
+        if self.nominal_start:
+            stages = ((2, self._lift_row(ctx)),)
+        else:
+            stages = ((2, 'move_front_later'), (1, 'move_front_first'))
+        return next((stage for stage, row in stages if tilt >= ctx.guards.move(row).guard), 0)
 
     def _move_front(self, ctx):
         if self.nominal_start:
@@ -257,8 +273,22 @@ class Clamp(Pab):
 
     def _clamp_front_custom(self, ctx):
         kind = 'clamp_front_custom' if self.front_custom_done else 'clamp_front_custom_first'
-        self._clamp(ctx, 'front', kind, CUSTOM)
+        self._clamp_custom(ctx, 'front', kind)
         self.front_custom_done = True
+
+    def _clamp_custom(self, ctx, part, kind):
+        """A custom clamp (Table 5.3) with the guards of the part's own roll.
+
+        The report measured its front custom clamps with the front 0.7 rad
+        off a side (Clamp Straight's eq 5.1 saturates there); Clamp Sideways
+        turns the front onto the side itself, where its V meets the walls
+        at the chord (twin, 90 mm, LEFT from 150 deg: front roll 3.133 rad,
+        Bend I -0.638 rad with its spring at 240 mNm, short of -0.69), so a
+        ``<kind>_sideways`` row (derived from the chord) takes over there.
+        """
+        view = ctx.feed.latest()
+        roll = clamp_state.part_roll(part, view.angles, view.orientation)
+        self._clamp(ctx, part, clamp_state.row_at(ctx.guards, kind, roll), CUSTOM)
 
     def _unclamp(self, ctx, part):
         ctx.prims.unclamp(part, partial=True)
