@@ -127,9 +127,19 @@ def test_a_direction_the_junction_cannot_have_is_refused(name, option, needle):
     assert needle in check(name, option)
 
 
-@pytest.mark.parametrize('name, option', [(codes.MITRE_BEND, codes.UP), (codes.MITRE_BEND, codes.DOWN)])
-def test_turns_not_built_are_refused_as_not_yet_taken(name, option):
-    assert 'not yet taken by this PAB' in check(name, option)
+@pytest.mark.parametrize('mm', [90, 110])
+@pytest.mark.parametrize('option, why', [(codes.UP, 'steering up against gravity is not built'),
+                                         (codes.DOWN, 'the front tilt stops at -0.1 rad and no clamp holds the '
+                                                      'robot upside down')])
+def test_turns_not_built_are_refused_as_not_yet_taken_with_the_reason(option, why, mm):
+    reason = check(codes.MITRE_BEND, option, distance=800.0, mm=mm)       # clamped straight, as they would start
+    assert 'not yet taken by this PAB' in reason and why in reason
+
+
+def test_every_direction_a_junction_can_have_is_taken_or_says_why_not():
+    for kind, _, _, options in jn.JUNCTIONS.values():
+        for direction, _ in options.values():
+            assert (kind, direction) in jn.TAKEN or direction in jn.NOT_TAKEN, (kind, direction)
 
 
 @pytest.mark.parametrize('name', [codes.MITRE_BEND, codes.T_JOINT])

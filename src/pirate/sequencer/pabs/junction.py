@@ -141,6 +141,13 @@ JUNCTIONS = {
 }
 #: (kind, direction) this PAB takes today; the rest are refused with the reason.
 TAKEN = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right'), ('tee', 'left'), ('tee', 'right')}
+#: Why a direction of a junction kind is not taken (tried in the twin, notes/issue-10.md "Turns up and down").
+NOT_TAKEN = {
+    'up': 'steering up against gravity is not built: in the twin the front V, its bends at their full torque '
+          '(setpoint 256), could not lift the Bend I module into the pipe above',
+    'down': "steering down needs the V's apex down: the front tilt stops at -0.1 rad and no clamp holds the "
+            'robot upside down',
+}
 
 
 class JunctionMissing(PabFailed):
@@ -180,8 +187,8 @@ class TakeJunction(Pab):
             return 'a %s is taken %s, not %s' % (self.label, allowed,
                                                  codes.OPTION_NAMES.get(goal.option, goal.option))
         if not self.takes(goal.name, goal.option):
-            return ('%s %s is not yet taken by this PAB (steering up or down is not built; taken today: %s)'
-                    % (self.label, self.direction.upper(), _taken_text()))
+            return ('%s %s is not yet taken by this PAB (%s; taken today: %s)'
+                    % (self.label, self.direction.upper(), NOT_TAKEN[self.direction], _taken_text()))
         if not guards.has('junction'):
             return 'no junction guards for a %d mm pipe' % guards.pipe_diameter
         if self.turning and not guards.has('turn'):
