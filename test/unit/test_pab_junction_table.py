@@ -128,7 +128,7 @@ def test_a_direction_the_junction_cannot_have_is_refused(name, option, needle):
 
 
 @pytest.mark.parametrize('mm', [90, 110])
-@pytest.mark.parametrize('option, why', [(codes.UP, 'steering up against gravity is not built'),
+@pytest.mark.parametrize('option, why', [(codes.UP, 'the rear could not be brought up'),
                                          (codes.DOWN, 'the front tilt stops at -0.1 rad and no clamp holds the '
                                                       'robot upside down')])
 def test_turns_not_built_are_refused_as_not_yet_taken_with_the_reason(option, why, mm):

@@ -143,8 +143,9 @@ JUNCTIONS = {
 TAKEN = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right'), ('tee', 'left'), ('tee', 'right')}
 #: Why a direction of a junction kind is not taken (tried in the twin, notes/issue-10.md "Turns up and down").
 NOT_TAKEN = {
-    'up': 'steering up against gravity is not built: in the twin the front V, its bends at their full torque '
-          '(setpoint 256), could not lift the Bend I module into the pipe above',
+    'up': 'taking a bend up is not built: in the twin the front part was steered into the pipe above and '
+          'clamped there, but the rear could not be brought up (the robot slid back once the rear let go), and '
+          'the robot state drops the IMU of a robot pitched over 60 deg',
     'down': "steering down needs the V's apex down: the front tilt stops at -0.1 rad and no clamp holds the "
             'robot upside down',
 }
