@@ -18,6 +18,8 @@ import math
 import pytest
 
 from pirate.sequencer.guards import GuardBook, load_files
+from pirate.sequencer.pabs import junction as jn
+from pirate.state.feed import RobotView
 
 L_M, WHEEL_D_M = 0.09, 0.046      # report 2.4.1.1: l, D_w
 BOOK = GuardBook(*load_files())
@@ -52,3 +54,14 @@ def test_every_other_110_mm_turn_value_is_the_90_mm_one():
     assert {k: v for k, v in row110.items() if k not in DIAMETER_BOUND} == \
         {k: v for k, v in row90.items() if k not in DIAMETER_BOUND}
     assert g110.move('move_front_turn') == g90.move('move_front_turn')
+
+
+@pytest.mark.parametrize('bend_i, bend_ii, steered_90, steered_110', [
+    (0.29, 1.43, True, True),        # a mitre bend: Bend II round the corner (twin, 90 mm)
+    (0.67, 0.93, False, True),       # the 110 mm T-joint: Bend I takes part of the turn (twin)
+    (-0.5, 0.79, False, False),      # the most a straight 110 mm pipe allows
+])
+def test_the_front_is_steered_on_bend_ii_or_in_110_mm_on_bend_i_and_ii(bend_i, bend_ii, steered_90, steered_110):
+    view = RobotView(dict(bend_i=bend_i, bend_ii=bend_ii), math.pi, 0.0, 0.0, 1.0, {})
+    assert jn._steered(BOOK.for_diameter(90).row('turn'), view) is steered_90
+    assert jn._steered(BOOK.for_diameter(110).row('turn'), view) is steered_110

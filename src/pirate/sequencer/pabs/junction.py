@@ -141,7 +141,7 @@ JUNCTIONS = {
 }
 #: (kind, direction) this PAB takes today; the rest are refused with the reason.
 TAKEN = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right'), ('tee', 'left'), ('tee', 'right')}
-#: Why a direction of a junction kind is not taken (tried in the twin, notes/issue-10.md "Turns up and down").
+#: Why a direction of a junction kind is not taken (tried in the twin: notes/issue-10.md, "Turns up" / "Turns down").
 NOT_TAKEN = {
     'up': 'taking a bend up is not built: in the twin the front part was steered into the pipe above and '
           'clamped there, but the rear could not be brought up (the robot slid back once the rear let go), and '
