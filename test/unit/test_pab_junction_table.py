@@ -127,9 +127,19 @@ def test_a_direction_the_junction_cannot_have_is_refused(name, option, needle):
     assert needle in check(name, option)
 
 
-@pytest.mark.parametrize('name, option', [(codes.MITRE_BEND, codes.UP), (codes.MITRE_BEND, codes.DOWN)])
-def test_turns_not_built_are_refused_as_not_yet_taken(name, option):
-    assert 'not yet taken by this PAB' in check(name, option)
+@pytest.mark.parametrize('mm', [90, 110])
+@pytest.mark.parametrize('option, why', [(codes.UP, 'the rear could not be brought up'),
+                                         (codes.DOWN, 'the front tilt stops at -0.1 rad and no clamp holds the '
+                                                      'robot upside down')])
+def test_turns_not_built_are_refused_as_not_yet_taken_with_the_reason(option, why, mm):
+    reason = check(codes.MITRE_BEND, option, distance=800.0, mm=mm)       # clamped straight, as they would start
+    assert 'not yet taken by this PAB' in reason and why in reason
+
+
+def test_every_direction_a_junction_can_have_is_taken_or_says_why_not():
+    for kind, _, _, options in jn.JUNCTIONS.values():
+        for direction, _ in options.values():
+            assert (kind, direction) in jn.TAKEN or direction in jn.NOT_TAKEN, (kind, direction)
 
 
 @pytest.mark.parametrize('name', [codes.MITRE_BEND, codes.T_JOINT])
@@ -143,10 +153,32 @@ def test_a_turn_is_taken_clamped_sideways_toward_it(name, option, orientation):
     assert 'starts clamped sideways' in check(name, option, robot=view())       # upright
 
 
-def test_a_mitre_turn_in_110_mm_is_refused_for_want_of_turn_guards():
-    angles = dict(CLAMPED, bend_i=-1.3, bend_ii=0.7, bend_iii=0.7, bend_iv=-1.3)
-    assert 'no turn guards for a 110 mm pipe' in check(codes.MITRE_BEND, codes.LEFT, robot=view(math.pi, angles),
-                                                       mm=110)
+@pytest.mark.parametrize('name', [codes.MITRE_BEND, codes.T_JOINT])
+@pytest.mark.parametrize('option, orientation', [(codes.LEFT, math.pi), (codes.RIGHT, 0.0)])
+def test_a_turn_in_110_mm_is_taken_clamped_sideways_toward_it(name, option, orientation):
+    sideways_110 = dict(CLAMPED, bend_i=-0.9, bend_ii=0.45, bend_iii=0.45, bend_iv=-0.9)
+    assert check(name, option, distance=800.0, robot=view(orientation, sideways_110), mm=110) is None
+
+
+class _NoTurnRows(object):
+    """A diameter's guards without the turn rows (a pipe nobody derived them for)."""
+
+    def __init__(self, guards):
+        self._guards = guards
+
+    def has(self, kind):
+        return kind != 'turn' and self._guards.has(kind)
+
+    def __getattr__(self, name):
+        return getattr(self._guards, name)
+
+
+def test_a_turn_in_a_pipe_without_turn_rows_is_refused():
+    goal = Goal(codes.MITRE_BEND, codes.LEFT, 800.0, 0.0, 110)
+    sideways_110 = dict(CLAMPED, bend_i=-0.9, bend_ii=0.45, bend_iii=0.45, bend_iv=-0.9)
+    reason = PABS[codes.MITRE_BEND][1].for_goal(goal).check(goal, view(math.pi, sideways_110),
+                                                           _NoTurnRows(BOOK.for_diameter(110)))
+    assert 'no turn guards for a 110 mm pipe' in reason
 
 
 @pytest.mark.parametrize('distance', [-100.0, 2001.0, float('nan'), float('inf')])

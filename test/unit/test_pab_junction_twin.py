@@ -8,9 +8,10 @@ test only). In a
 straight pipe the same goal looks its distance, aborts with
 junction_missing and leaves the robot clamped with the wheels stopped.
 
-Clamped sideways toward a mitre bend (config/worlds/bend_<side>_90.yaml)
+Clamped sideways toward a mitre bend (config/worlds/bend_<side>_<mm>.yaml)
 or toward the side a T-joint entered through its branch turns to
-(tee_branch_<side>_90.yaml), MITRE_BEND / T_JOINT LEFT / RIGHT steers the
+(tee_branch_<side>_<mm>.yaml; every one in 90 mm, one of each kind in
+110 mm), MITRE_BEND / T_JOINT LEFT / RIGHT steers the
 front in, brings the rear through and ends with every module in the new
 pipe, clamped on its side there (ground truth); in a straight pipe the
 same goal finds no opening and aborts with junction_missing.
@@ -36,9 +37,13 @@ TURN_SPEEDUP = 10.0
 JOINT_BODIES = ('front_module', 'bend_i_module', 'bend_ii_module', 'rotational_front', 'bend_iii_module',
                 'bend_iv_module', 'rear_module')
 SIDES = {'left': (codes.LEFT, math.pi, 1.0), 'right': (codes.RIGHT, 0.0, -1.0)}
-TURNS = {codes.MITRE_BEND: ('bend_%s_90', 'Taking Mitre bend'), codes.T_JOINT: ('tee_branch_%s_90', 'Taking T-joint')}
+TURNS = {codes.MITRE_BEND: ('bend_%s_%d', 'Taking Mitre bend'), codes.T_JOINT: ('tee_branch_%s_%d', 'Taking T-joint')}
+#: (goal, side, pipe diameter mm): every sideways turn in 90 mm, one of each kind in 110 mm (lean).
+SIDEWAYS_TURNS = [(name, side, 90) for name in sorted(TURNS) for side in sorted(SIDES)] + [
+    (codes.MITRE_BEND, 'left', 110), (codes.T_JOINT, 'right', 110)]
 WORLDS = ('bend_down_90', 'bend_up_90', 'bend_left_90', 'bend_right_90', 'tee_run_up_90', 'tee_run_up_110',
-          'tee_run_down_90', 'tees_run_up_90', 'bends_left_90', 'tee_branch_left_90', 'tee_branch_right_90')
+          'tee_run_down_90', 'tees_run_up_90', 'bends_left_90', 'tee_branch_left_90', 'tee_branch_right_90',
+          'bend_left_110', 'bend_right_110', 'tee_branch_left_110', 'tee_branch_right_110')
 
 
 @pytest.mark.parametrize('world', WORLDS)
@@ -85,22 +90,21 @@ def test_no_junction_within_the_distance_aborts_with_junction_missing():
         assert h.server.status() == 'Idle Clamped'                            # it never let go
 
 
-def clamped_sideways(h, option):
-    reason, outcome = run_bounded(h, h.goal(codes.CLAMP_SIDEWAYS, option=option))
+def clamped_sideways(h, option, mm=90):
+    reason, outcome = run_bounded(h, h.goal(codes.CLAMP_SIDEWAYS, mm, option=option))
     assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
 
 
-@pytest.mark.parametrize('name', sorted(TURNS))
-@pytest.mark.parametrize('side', sorted(SIDES))
-def test_a_turn_left_and_right_ends_in_the_new_pipe(name, side):
+@pytest.mark.parametrize('name, side, mm', SIDEWAYS_TURNS)
+def test_a_turn_left_and_right_ends_in_the_new_pipe(name, side, mm):
     option, roll, sign = SIDES[side]
     world_name, server_state = TURNS[name]
-    world = network.load(network.world_path(world_name % side))
+    world = network.load(network.world_path(world_name % (side, mm)))
     new_pipe_from = world.pieces[1].diameter / 2          # the new pipe's near wall, off the first pipe's axis
     with SimHarness(speedup=TURN_SPEEDUP, world=world.name, orientation=roll) as h:
-        clamped_sideways(h, option)
+        clamped_sideways(h, option, mm)
         del h.feedback[:]
-        reason, outcome = run_bounded(h, h.goal(name, option=option, distance=800.0), 120.0)
+        reason, outcome = run_bounded(h, h.goal(name, mm, option=option, distance=800.0), 120.0)
         assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
         assert h.prims.executed[:len(TURN)] == TURN          # then Clamp Sideways straightens if it must
         assert {fb.server_state for fb in h.feedback if fb.pab_state} == {server_state}

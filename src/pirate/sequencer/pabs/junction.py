@@ -42,11 +42,13 @@ round with the rear still clamped and driving, let the front pull the
 rear through (Bend III opening, Bend IV toward the turn side) until Bend
 III is past straight, clamp the rear, the front, drive on so the rear
 module leaves the corner, and Clamp Sideways re-adjusts if it must. Every
-guard is in the ``turn`` row of config/guards_90.yaml, measured in the twin.
+guard is in the ``turn`` row of config/guards_<mm>.yaml: measured in the
+twin in 90 mm, derived from them and the geometry in 110 mm (checked in
+the twin).
 
 Which (kind, direction) the PAB takes is :data:`TAKEN`: straight on
-through a T-joint, a mitre bend or a T-joint left or right (90 mm). Turns
-up or down are refused with the reason.
+through a T-joint, a mitre bend or a T-joint left or right (90 and 110
+mm). Turns up or down are refused with the reason.
 """
 import collections
 import math
@@ -139,6 +141,14 @@ JUNCTIONS = {
 }
 #: (kind, direction) this PAB takes today; the rest are refused with the reason.
 TAKEN = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right'), ('tee', 'left'), ('tee', 'right')}
+#: Why a direction of a junction kind is not taken (tried in the twin: notes/issue-10.md, "Turns up" / "Turns down").
+NOT_TAKEN = {
+    'up': 'taking a bend up is not built: in the twin the front part was steered into the pipe above and '
+          'clamped there, but the rear could not be brought up (the robot slid back once the rear let go), and '
+          'the robot state drops the IMU of a robot pitched over 60 deg',
+    'down': "steering down needs the V's apex down: the front tilt stops at -0.1 rad and no clamp holds the "
+            'robot upside down',
+}
 
 
 class JunctionMissing(PabFailed):
@@ -178,13 +188,13 @@ class TakeJunction(Pab):
             return 'a %s is taken %s, not %s' % (self.label, allowed,
                                                  codes.OPTION_NAMES.get(goal.option, goal.option))
         if not self.takes(goal.name, goal.option):
-            return ('%s %s is not yet taken by this PAB (steering up or down is not built; taken today: %s)'
-                    % (self.label, self.direction.upper(), _taken_text()))
+            return ('%s %s is not yet taken by this PAB (%s; taken today: %s)'
+                    % (self.label, self.direction.upper(), NOT_TAKEN[self.direction], _taken_text()))
         if not guards.has('junction'):
             return 'no junction guards for a %d mm pipe' % guards.pipe_diameter
         if self.turning and not guards.has('turn'):
-            return 'no turn guards for a %d mm pipe (steering into a new pipe was measured in 90 mm only)' % (
-                guards.pipe_diameter)
+            return 'no turn guards for a %d mm pipe (config/guards_%d.yaml has no turn row)' % (
+                guards.pipe_diameter, guards.pipe_diameter)
         speed = _speed(goal, guards)
         return self._check_distance(goal, guards) or speed_problem(speed, speed) or self._check_clamp(view, guards)
 
@@ -283,8 +293,7 @@ class TakeJunction(Pab):
         prims.drive_at_velocity(float(row['steer_speed']))
         try:
             view = prims.follow('steer front', lambda v: _tilt_along_the_turn(prims, row, v),
-                                lambda v: v.angles['bend_ii'] >= float(row['steered_rad']),
-                                'bend_ii >= %.2f' % float(row['steered_rad']), limit_s)
+                                lambda v: _steered(row, v), _steered_text(row), limit_s)
         except TimedOut:
             self.junction_missing = True
             raise JunctionMissing('no opening toward the %s within %.0f mm (%.0f s of steering; the front did not '
@@ -344,6 +353,23 @@ def _tilt_along_the_turn(prims, row, view):
     limit = int(row['tilt_pwm_max'])
     pwm = int(float(row['tilt_gain']) * (target - view.angles['front_tilt']))
     prims.move_module('front_tilt', max(-limit, min(limit, pwm)))
+
+
+def _steered(row, view):
+    """True when the front part has turned into the new pipe: Bend II round
+    the corner, or (a row with ``steered_sum_rad``: a corner wide enough for
+    Bend I to take part of the turn, the 110 mm T-joint) Bend I + Bend II,
+    the front module's direction against the middle."""
+    angles = view.angles
+    return angles['bend_ii'] >= float(row['steered_rad']) or (
+        'steered_sum_rad' in row and angles['bend_i'] + angles['bend_ii'] >= float(row['steered_sum_rad']))
+
+
+def _steered_text(row):
+    text = 'bend_ii >= %.2f' % float(row['steered_rad'])
+    if 'steered_sum_rad' in row:
+        text += ' or bend_i + bend_ii >= %.2f' % float(row['steered_sum_rad'])
+    return text
 
 
 def _clamp_at_corner(ctx):
