@@ -100,6 +100,23 @@ def test_obstacles_are_in_the_model_and_debris_falls_to_the_floor():
     assert _ray(robot, (0.825, 0.0, 0.0), (0.0, 0.0, 1.0)) == pytest.approx(0.040, abs=0.001)  # narrower
 
 
+
+def test_resting_debris_sleeps_until_the_robot_pushes_it():
+    """Debris at rest sleeps (no physics cost); the robot, which never
+    sleeps, wakes it by touching it and pushes it along the floor."""
+    net = network.build({'pieces': [{'type': 'straight', 'length_mm': 1500}], 'start': {'at_mm': 400},
+                         'obstacles': [{'type': 'debris', 'at_mm': 760, 'size_mm': 6}]})
+    robot = TwinRobot(net, settle_s=1.0)
+    debris = robot.model.body([robot.model.body(b).name for b in range(robot.model.nbody)
+                               if robot.model.body(b).name.startswith('debris')][0])
+    robot_tree = robot.model.body_treeid[robot.model.body(twin_robot.ROOT).id]
+    assert robot.data.tree_asleep[robot.model.body_treeid[debris.id]] >= 0      # asleep at rest
+    start = robot.data.xpos[debris.id][0]
+    robot.command(*arrays({'wheels': units.mm_s_to_wheel_counts(100.0)}, {'wheels': 'velocity'}))
+    run_until(robot, lambda r: r.data.tree_asleep[robot_tree] >= 0, 3.0)        # never: the robot stays awake
+    assert robot.data.tree_asleep[robot_tree] < 0
+    assert robot.data.xpos[debris.id][0] - start > 0.05                          # woken and pushed
+
 def test_robot_geometry_matches_the_module_table():
     robot = TwinRobot(world('straight_90'), settle_s=0.0)
     model, data = robot.model, robot.data

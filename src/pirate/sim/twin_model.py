@@ -81,9 +81,10 @@ def model_xml(world, config, roll):
     """MJCF text of ``world`` (a pirate.world.network.Network) with the robot."""
     root = ET.Element('mujoco', model='pirate_' + str(world.name))
     ET.SubElement(root, 'compiler', angle='radian')
-    ET.SubElement(root, 'option', timestep='%g' % config['physics']['timestep_s'], gravity='0 0 -9.81',
-                  integrator='implicitfast', cone='elliptic',
-                  impratio='%g' % config['physics']['friction_impratio'])
+    option = ET.SubElement(root, 'option', timestep='%g' % config['physics']['timestep_s'], gravity='0 0 -9.81',
+                           integrator='implicitfast', cone='elliptic',
+                           impratio='%g' % config['physics']['friction_impratio'])
+    ET.SubElement(option, 'flag', sleep='enable')       # debris at rest sleeps (twin_pipes); the robot never
     ET.SubElement(root, 'visual').append(ET.Element('global', offwidth='640', offheight='480'))
     _defaults(root, config)
     body = ET.SubElement(root, 'worldbody')
