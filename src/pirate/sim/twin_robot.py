@@ -78,24 +78,18 @@ class RobotBuilder(object):
         """A module's inertial and round collision shell about its axis, reaching ``length`` from
         the body origin in ``direction`` (+1 front, -1 rear).
 
-        The shell is a capsule of the module's radius and length (rounded
-        ends inside that length). Its side, which is what rests on a wall
-        (lying on a side, the front and rear modules on the floor), is the
-        round shell's; the rounded ends sit at the joints, inside the wheels
-        (23 mm > 20 mm). MuJoCo collides a capsule with a wall box
-        analytically, a cylinder through its general convex collider: the
-        network world's physics ran 12 % faster with the same clamp to the
-        thousandth of a rad (notes/issue-9.md, branch twin5). The front
-        module had a capsule first, for another reason: a flat cylinder end
-        caught the edge where two wall pieces meet (a mitre bend's inner
-        corner, a T-joint's run) and stopped the robot there (issue 10.5,
-        notes/issue-10.md)."""
+        The front module's shell is a capsule of the same length: it has no
+        wheel and rides on the floor ahead of the front V, and a flat
+        cylinder end caught the edge where two wall pieces meet (a mitre
+        bend's inner corner, a T-joint's run) and stopped the robot there
+        (issue 10.5, notes/issue-10.md)."""
         radius = self.geo['body_radius_m']
         centre = (direction * length / 2, 0, 0)
         ET.SubElement(body, 'inertial', pos=_fmt(centre), mass='%g' % mass,
                       diaginertia=_fmt(_cylinder_inertia(mass, radius, length)))
-        ET.SubElement(body, 'geom', type='capsule', pos=_fmt(centre),
-                      size=_fmt((radius, length / 2 - radius)),
+        end = name == 'front_module'
+        ET.SubElement(body, 'geom', type='capsule' if end else 'cylinder', pos=_fmt(centre),
+                      size=_fmt((radius, length / 2 - (radius if end else 0.0))),
                       euler='0 1.5708 0', name=name + '_shell', **{'class': ROBOT_CLASS})
 
     def _wheel(self, body, board, x):
