@@ -140,7 +140,9 @@ class RobotBuilder(object):
         self._module(root, ROOT, self.mass['rotational_half'], -1, half)
         ET.SubElement(root, 'site', name='imu', pos='0 0 0')
         front = ET.SubElement(root, 'body', name=ROTATIONAL_FRONT, pos='0 0 0')
-        ET.SubElement(front, 'joint', name='rotation', type='hinge', axis='1 0 0')
+        rot = self.cfg['rotation']   # the motor's damping is not clipped by its torque limit (config/twin.yaml)
+        ET.SubElement(front, 'joint', name='rotation', type='hinge', axis='1 0 0',
+                      damping='%g' % (self.cfg['physics']['joint_damping_nms'] + rot['kv_nms_per_rad']))
         self._module(front, ROTATIONAL_FRONT, self.mass['rotational_half'], 1, half)
         self._chain(front, FRONT_CHAIN, 1)
         self._chain(root, REAR_CHAIN, -1)
