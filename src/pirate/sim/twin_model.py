@@ -5,7 +5,7 @@ Assembles the walls (pirate.sim.twin_pipes) and the robot
 (pirate.sim.boards): each bend a position servo whose stiffness is the
 series spring (report 2.4.3.1) and whose target is the worm's angle; front
 tilt and cameras stiff servos on their gear output; the rotation a servo
-with the motor's torque limit; each wheel a velocity servo with the wheel
+with the motor's torque limit, its damping on the joint (twin_robot); each wheel a velocity servo with the wheel
 motor's torque limit. Gravity acts on every body. Pure: writes XML.
 """
 import os
@@ -68,8 +68,7 @@ def _actuators(root, config):
                       kv='0.05')
     rot = config['rotation']
     ET.SubElement(act, 'position', name='rotation', joint='rotation', kp='%g' % rot['kp_nm_per_rad'],
-                  kv='%g' % rot['kv_nms_per_rad'], forcelimited='true',
-                  forcerange='%g %g' % (-rot['max_nm'], rot['max_nm']))
+                  forcelimited='true', forcerange='%g %g' % (-rot['max_nm'], rot['max_nm']))
     wheel = config['wheel']
     for board in tables.DRIVE_BOARDS:
         ET.SubElement(act, 'velocity', name=twin_robot.wheel_joint(board), joint=twin_robot.wheel_joint(board),
@@ -81,9 +80,10 @@ def model_xml(world, config, roll):
     """MJCF text of ``world`` (a pirate.world.network.Network) with the robot."""
     root = ET.Element('mujoco', model='pirate_' + str(world.name))
     ET.SubElement(root, 'compiler', angle='radian')
-    ET.SubElement(root, 'option', timestep='%g' % config['physics']['timestep_s'], gravity='0 0 -9.81',
-                  integrator='implicitfast', cone='elliptic',
-                  impratio='%g' % config['physics']['friction_impratio'])
+    option = ET.SubElement(root, 'option', timestep='%g' % config['physics']['timestep_s'], gravity='0 0 -9.81',
+                           integrator='implicitfast', cone='elliptic',
+                           impratio='%g' % config['physics']['friction_impratio'])
+    ET.SubElement(option, 'flag', sleep='enable')       # debris at rest sleeps (twin_pipes); the robot never
     ET.SubElement(root, 'visual').append(ET.Element('global', offwidth='640', offheight='480'))
     _defaults(root, config)
     body = ET.SubElement(root, 'worldbody')

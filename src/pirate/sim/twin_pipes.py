@@ -136,9 +136,12 @@ class WallBuilder(object):
         self.tube(frame.origin, frame.axes, obstacle['diameter_mm'] / 2000.0, lambda r: [(0.0, length)])
 
     def _obstacle_debris(self, world, obstacle):
+        """A loose box that falls to the floor. At rest it sleeps (MuJoCo's
+        sleeping islands: no contacts, no solver work) until something
+        awake touches it; the robot never sleeps (twin_robot)."""
         radius, frame = self._floor(world, obstacle)
         half = obstacle['size_mm'] / 2000.0
-        body = ET.SubElement(self.parent, 'body', name='debris%d' % self.count,
+        body = ET.SubElement(self.parent, 'body', name='debris%d' % self.count, sleep='allowed',
                              pos=_fmt(_add(frame.origin, frame.axes[2], -(radius - half - 0.002))))
         ET.SubElement(body, 'freejoint')
         ET.SubElement(body, 'geom', type='box', size=_fmt((half, half, half)), mass='0.005',

@@ -134,12 +134,15 @@ class RobotBuilder(object):
     def build(self, parent, pos, xyaxes):
         """The robot with its root (rotational rear half) at ``pos``."""
         half = self.geo['module_length_m'] / 2
-        root = ET.SubElement(parent, 'body', name=ROOT, pos=_fmt(pos), xyaxes=_fmt(xyaxes))
+        root = ET.SubElement(parent, 'body', name=ROOT, pos=_fmt(pos), xyaxes=_fmt(xyaxes),
+                             sleep='never')       # its boards may move it at any sample
         ET.SubElement(root, 'freejoint', name=ROOT_JOINT)
         self._module(root, ROOT, self.mass['rotational_half'], -1, half)
         ET.SubElement(root, 'site', name='imu', pos='0 0 0')
         front = ET.SubElement(root, 'body', name=ROTATIONAL_FRONT, pos='0 0 0')
-        ET.SubElement(front, 'joint', name='rotation', type='hinge', axis='1 0 0')
+        rot = self.cfg['rotation']   # the motor's damping is not clipped by its torque limit (config/twin.yaml)
+        ET.SubElement(front, 'joint', name='rotation', type='hinge', axis='1 0 0',
+                      damping='%g' % (self.cfg['physics']['joint_damping_nms'] + rot['kv_nms_per_rad']))
         self._module(front, ROTATIONAL_FRONT, self.mass['rotational_half'], 1, half)
         self._chain(front, FRONT_CHAIN, 1)
         self._chain(root, REAR_CHAIN, -1)
