@@ -212,5 +212,9 @@ def test_each_part_is_judged_by_its_own_roll():
     assert cs.part_roll('front', angles(**pose), imu) == pytest.approx(3.152)
     assert cs.part_roll('rear', angles(**pose), imu) == imu
     assert cs.classify(guards, angles(**pose), efforts, imu) == cs.ClampState(cs.FULL, cs.FULL)
-    aligned = dict(pose, rotation=0.0)       # the same bends with the front at the rear's roll: not on a side
-    assert cs.classify(guards, angles(**aligned), efforts, imu).front == cs.PARTLY
+    aligned = dict(pose, rotation=0.0)       # the same bends with the front at the rear's roll
+    # 0.43 rad off the side: the chord still keeps the V from -0.69, so its
+    # custom row is the side's (within_rad 0.49, derived): custom
+    assert cs.classify(guards, angles(**aligned), efforts, imu).front == cs.CUSTOM
+    # 0.7 rad off the side (where the report measured -0.69): short of it, partly
+    assert cs.classify(guards, angles(**aligned), efforts, math.pi - 0.7).front == cs.PARTLY

@@ -54,13 +54,16 @@ def test_non_nominal_clamp_straight_in_110_mm_on_the_twin(roll):
         assert h.server.status() == 'Idle Clamped'
 
 
-def test_clamp_sideways_from_30_deg_off_its_side_on_the_twin():
-    """90 mm, LEFT from 150 deg (bench/pab_clamp_sweep's failure on main):
-    eq 5.1 turns the front onto the side, where its V meets the walls at
-    the chord (-0.638 rad, short of the report's -0.69 measured 0.7 rad off
-    the side); the front custom clamp takes the chord's guard there and the
-    goal ends clamped at the target, both V's on the wall (ground truth)."""
-    with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=math.radians(150)) as h:
+@pytest.mark.parametrize('start_deg', [150, 105])
+def test_clamp_sideways_from_off_its_side_on_the_twin(start_deg):
+    """90 mm, LEFT from 150 deg and from 105 deg (bench/pab_clamp_sweep's
+    failures): eq 5.1 turns the front onto the side (from 150 deg) or 0.19
+    rad off it (from 105 deg, the robot settles at 2.22 rad), where its V
+    meets the walls at the chord (-0.638 / -0.614 rad, short of the report's
+    -0.69 measured 0.7 rad off the side); the front custom clamp takes the
+    chord's guard within the row's derived within_rad and the goal ends
+    clamped at the target, both V's on the wall (ground truth)."""
+    with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=math.radians(start_deg)) as h:
         robot_wait(h, 1.0)
         reason, outcome = run_bounded(h, h.goal(CLAMP_SIDEWAYS, pipe_diameter=90, option=LEFT))
         assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)

@@ -91,12 +91,14 @@ def free_margin_rad(guards):
     return float(guards.row('clamp_state')['free_margin_rad'])
 
 
-def on_side(guards, orientation):
-    """True when the rear's roll ``orientation`` (rad) lies in the nominal band around a side."""
+def on_side(guards, orientation, half=None):
+    """True when the roll ``orientation`` (rad) lies within ``half`` rad of a
+    side (default: the nominal band around it)."""
     if orientation is None:
         return False
-    low, high = guards.region('nominal')
-    half = (high - low) / 2.0
+    if half is None:
+        low, high = guards.region('nominal')
+        half = (high - low) / 2.0
     return any(abs(math.remainder(orientation - side, 2 * math.pi)) <= half for side in SIDES_RAD)
 
 
@@ -112,9 +114,12 @@ def part_roll(part, angles, orientation):
 
 def row_at(guards, row, orientation=None):
     """Guard ``row`` for a robot at roll ``orientation`` (rad): ``<row>_sideways``
-    when it lies on a side and the diameter has that row, else ``row``."""
+    when the diameter has that row and the robot lies on a side (within the
+    row's own ``within_rad`` of it, or the nominal band), else ``row``."""
     sideways = row + SIDEWAYS
-    return sideways if on_side(guards, orientation) and guards.has(sideways) else row
+    if not guards.has(sideways):
+        return row
+    return sideways if on_side(guards, orientation, guards.row(sideways).get('within_rad')) else row
 
 
 def full_row(guards, orientation=None):
