@@ -46,7 +46,6 @@ class PabClampTest(SequencerTest):
 
     def test_scenario(self):
         spec = rospy.get_param('~goal')
-        self.server_states = set()
         self._send(spec)
         self._wait_sim(2.0)
         self._stall_simulator(1.0)

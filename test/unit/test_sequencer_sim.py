@@ -202,14 +202,15 @@ def test_a_late_robot_thread_is_not_a_silent_robot():
     abort with "no robot state" (CI did, at 0.32 s); the stall is made by
     holding the robot's lock for twice the feedback timeout mid-clamp."""
     with fake_harness(SPEEDUP, 1.45) as h:
-        worker = threading.Thread(target=lambda: h.__dict__.update(outcome=run_bounded(
-            h, h.goal(CLAMP_STRAIGHT))[1]), daemon=True)
+        ended = {}
+        worker = threading.Thread(target=lambda: ended.update(outcome=run_bounded(h, h.goal(CLAMP_STRAIGHT))[1]),
+                                  daemon=True)
         worker.start()
         assert wait_robot(h, lambda: len(h.prims.executed) >= 2, 30.0), h.prims.executed
         with h._lock:
             time.sleep(2 * h.feed.feedback_timeout)    # the fault: the robot thread is stalled
         worker.join(HANG_BOUND_S)
-        assert h.outcome.status == 'succeeded', h.outcome.message
+        assert ended['outcome'].status == 'succeeded', ended['outcome'].message
 
 
 @pytest.mark.parametrize('orientation, goals', [
