@@ -35,6 +35,7 @@ class KinematicRobot(object):
         self.efforts = {}
         self.clamped = {'front': False, 'rear': False}
         self.executed = []
+        self.unclamp_rows = []          # the guard row each unclamp was given (None: the plain one)
 
     # --- feed ---
     def latest(self):
@@ -76,9 +77,10 @@ class KinematicRobot(object):
         self.efforts[pair.outer.joint] = PRESS_MNM
         self.clamped[part] = True
 
-    def unclamp(self, part, partial=False):
+    def unclamp(self, part, partial=False, row=None):
         self.executed.append('unclamp %s%s' % (part, ' partial' if partial else ''))
-        pair = self.guards.pair('unclamp_partial' if partial else 'unclamp', part)
+        self.unclamp_rows.append(row)
+        pair = self.guards.pair(row or ('unclamp_partial' if partial else 'unclamp'), part)
         self.angles.update({pair.outer.joint: pair.outer.guard + 0.01, pair.inner.joint: pair.inner.guard - 0.01})
         self.efforts[pair.outer.joint] = 0.0
         self.clamped[part] = False

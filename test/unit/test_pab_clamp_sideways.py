@@ -82,3 +82,21 @@ def test_a_front_left_at_the_sideways_lift_is_lifted_again_before_its_later_cust
     run(Clamp.for_goal(goal_for(side)), robot, goal_for(side))
     later_custom = [tilt for kind, tilt in tilts if kind.startswith('clamp_front_custom') and '_first' not in kind]
     assert later_custom and min(later_custom) >= later, tilts
+
+
+@pytest.mark.parametrize('mm, side, row', [
+    (110, 'RIGHT', 'unclamp_partial_sideways'), (110, 'LEFT', 'unclamp_partial_sideways'),
+    (110, 'STRAIGHT', 'unclamp_partial'), (90, 'RIGHT', 'unclamp_partial'), (90, 'LEFT', 'unclamp_partial')])
+def test_a_part_turned_onto_a_side_is_opened_past_the_chord_first(mm, side, row):
+    """110 mm: the report's partial unclamp (-0.9 rad) does not open the V
+    past the chord it meets lying on a side (-0.893), so Clamp Sideways
+    opens it further (config/guards_110.yaml unclamp_partial_sideways;
+    twin: the front jammed 0.29 rad short of the side otherwise). Clamp
+    Straight, and 90 mm (its partial is 0.12 rad past the chord), keep the
+    plain row."""
+    robot = KinematicRobot(math.radians(150 if side == 'RIGHT' else 30), 0.0, front_tilt=0.0, pipe_diameter=mm)
+    run(Clamp.for_goal(goal_for(side)), robot, goal_for(side))
+    assert robot.unclamp_rows and set(robot.unclamp_rows) == {row}, robot.unclamp_rows
+    chord_outer = robot.guards.pair('clamp_sideways', 'front').outer.guard if mm == 110 else None
+    if row.endswith('_sideways'):
+        assert robot.guards.pair(row, 'front').outer.guard > chord_outer + 0.05     # more open than the wall on a side

@@ -73,3 +73,22 @@ def test_clamp_sideways_from_off_its_side_on_the_twin(start_deg):
         assert abs(truth['roll'] - math.pi) < 0.1 and abs(truth['front_roll'] - math.pi) < 0.1, truth
         assert APEX_WHEELS <= set(truth['wheel_contacts'])
         assert h.server.status() == 'Idle Clamped'
+
+
+def test_clamp_sideways_in_110_mm_from_off_its_side_on_the_twin():
+    """110 mm, RIGHT from 150 deg (bench/pab_junction_sweep's and
+    bench/pab_clamp_sweep's failures): with the report's partial unclamp
+    (-0.9 rad, on the chord's -0.893) the front V jammed on the walls as
+    the rotation brought it down, 0.29 rad short of the side, and rotate
+    front timed out; opened past the chord first (unclamp_partial_sideways)
+    the goal ends clamped at the target, both V's on the wall (ground truth)."""
+    with SimHarness(speedup=SPEEDUP, world='straight_110', orientation=math.radians(150)) as h:
+        robot_wait(h, 1.0)
+        reason, outcome = run_bounded(h, h.goal(CLAMP_SIDEWAYS, pipe_diameter=110, option=RIGHT))
+        assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+        assert 'unclamp front partial' in h.prims.executed and 'rotate front' in h.prims.executed
+        robot_wait(h, 2.0)
+        truth = h.ground_truth()
+        assert abs(truth['roll']) < 0.1 and abs(truth['front_roll']) < 0.1, truth
+        assert APEX_WHEELS <= set(truth['wheel_contacts'])
+        assert h.server.status() == 'Idle Clamped'

@@ -43,7 +43,7 @@ SIDEWAYS_TURNS = [(name, side, 90) for name in sorted(TURNS) for side in sorted(
     (codes.MITRE_BEND, 'left', 110), (codes.T_JOINT, 'right', 110)]
 WORLDS = ('bend_down_90', 'bend_up_90', 'bend_left_90', 'bend_right_90', 'tee_run_up_90', 'tee_run_up_110',
           'tee_run_down_90', 'tees_run_up_90', 'bends_left_90', 'tee_branch_left_90', 'tee_branch_right_90',
-          'bend_left_110', 'bend_right_110', 'tee_branch_left_110', 'tee_branch_right_110')
+          'bend_left_110', 'bend_right_110', 'bends_right_110', 'tee_branch_left_110', 'tee_branch_right_110')
 
 
 @pytest.mark.parametrize('world', WORLDS)

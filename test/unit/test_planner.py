@@ -21,7 +21,7 @@ FRONT = SETTINGS['robot']['front_mm']
 REAR = SETTINGS['robot']['rear_mm']
 APPROACH = SETTINGS['approach_mm']
 CLEAR = SETTINGS['clear_mm']
-TURN_END = SETTINGS['turn_end_mm']
+TURN_END = SETTINGS['turn_end_mm'][90]
 SEARCH = SETTINGS['search_mm']
 
 
@@ -62,6 +62,23 @@ def test_mitre_left_clamps_sideways_left_and_stops_the_front_before_it():
     assert steps[3].distance_mm == pytest.approx(3000 - exit_mm - TURN_END)
     # The mission's speed is the drives'; the clamp and the junction PAB run at their own (0).
     assert [s.speed_mm_s for s in steps] == [0.0, 60, 0.0, 60, 0.0]
+
+
+def test_a_turn_in_110_mm_ends_where_the_110_mm_turn_leaves_the_robot():
+    """The turn's end is the robot's geometry in that pipe: one figure per diameter."""
+    ends = SETTINGS['turn_end_mm']
+    assert ends[110] > ends[90] + 100       # the twin: 577-587 against 385-388 mm
+    steps = run(world(BEND_LEFT, {'pit': 300, 'target': 3000}, diameter=110), 'pit', 'target').steps
+    exit_mm = 2000 + 110
+    assert steps[2].pab == 'MITRE_BEND' and steps[2].pipe_diameter == 110
+    assert steps[2].end_m * 1000 == pytest.approx(exit_mm + ends[110])
+    assert steps[3].distance_mm == pytest.approx(3000 - exit_mm - ends[110])
+
+
+def test_a_turn_in_a_pipe_without_a_measured_turn_end_is_refused():
+    settings = dict(SETTINGS, turn_end_mm={90: 386})
+    with pytest.raises(planner.PlanError, match='no turn end measured for a 110 mm pipe'):
+        run(world(BEND_LEFT, {'pit': 300, 'target': 3000}, diameter=110), 'pit', 'target', settings=settings)
 
 
 def test_the_way_back_takes_the_bend_rear_first_still_clamped_sideways():

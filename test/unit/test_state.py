@@ -71,6 +71,7 @@ def test_velocity_is_the_median_of_the_drive_boards():
     (27, raw(angle=-3000), 'AS5055'),
     (25, [0] * 9, 'not gravity'),
     (25, [0, 0, 0, 0, 32000, 32000, 0, 0, 0], 'not gravity'),
+    (25, [0, 0, 0, 20000, 16384, 0, 0, 0, 0], 'not gravity'),   # 1.6 g: y alone is 1 g
 ])
 def test_bad_small_state_dropped_old_values_kept(board, data, reason):
     state = StateAssembler()
@@ -82,6 +83,38 @@ def test_bad_small_state_dropped_old_values_kept(board, data, reason):
     assert after.position == before.position
     assert after.orientation == before.orientation
     assert state.age(0.0) == 0.0     # the dropped message did not refresh anything
+
+
+def pitched_imu(roll, pitch):
+    """Board 25's reading with the rear part pitched ``pitch`` rad (up a pipe):
+    gravity along the robot's axis (x) grows, its (y, z) part shrinks."""
+    data = imu(roll)
+    data[tables.SS_IMU_Y] = int(round(data[tables.SS_IMU_Y] * math.cos(pitch)))
+    data[tables.SS_IMU_Z] = int(round(data[tables.SS_IMU_Z] * math.cos(pitch)))
+    data[tables.SS_IMU_X] = int(round(units.IMU_COUNTS_PER_G * math.sin(pitch)))
+    return data
+
+
+@pytest.mark.parametrize('pitch_deg', [30, 59])
+def test_a_pitched_robot_reads_its_roll(pitch_deg):
+    """Gravity is judged on all three axes: a robot on a slope is not a
+    silent IMU, and its roll comes from gravity's (y, z) part."""
+    state = StateAssembler()
+    full_cycle(state, 0.0, roll=math.pi / 2)
+    state.update(tables.IMU_BOARD, pitched_imu(1.2, math.radians(pitch_deg)), 0.05)
+    assert state.snapshot(0.05).orientation == pytest.approx(1.2, abs=0.01)
+
+
+@pytest.mark.parametrize('pitch_deg', [61, 80, 90])
+def test_a_steeply_pitched_robot_holds_its_last_roll(pitch_deg):
+    """Pitched over 60 deg (a pipe going up) the roll is not defined: the
+    reading is gravity, so it is kept, but the last roll is held."""
+    state = StateAssembler()
+    full_cycle(state, 0.0, roll=1.3)
+    state.update(tables.IMU_BOARD, pitched_imu(0.2, math.radians(pitch_deg)), 0.05)
+    snap = state.snapshot(0.05)
+    assert snap.orientation == pytest.approx(1.3, abs=0.01)
+    assert tables.IMU_BOARD not in state.silent(0.05)
 
 
 def test_staleness_by_the_time_passed_in():

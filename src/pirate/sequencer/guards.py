@@ -64,7 +64,7 @@ class Guards(object):
     def pair(self, kind, part):
         """:class:`PairGuard` of primitive ``kind`` (e.g. 'clamp') for ``part``."""
         key = kind
-        if kind.startswith('unclamp') and kind != 'unclamp_partial':
+        if kind.startswith('unclamp') and not kind.startswith('unclamp_partial'):
             key = 'unclamp_%s' % part
         entry = self._table.get(key)
         if entry is None:

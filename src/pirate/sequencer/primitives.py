@@ -145,7 +145,7 @@ class MotionPrimitives(object):
                 self.control.set_mode(bend.joint, 'torque')
                 self.setpoint.set(bend.joint, bend.setpoint)
 
-    def unclamp(self, part, partial=False):
+    def unclamp(self, part, partial=False, row=None):
         """Open ``part``'s V fully (Home) or partially (re-adjust), 4.7.2.5.
 
         A partial unclamp leaves "a very open V" (4.7.2.5): at its guard the
@@ -159,8 +159,11 @@ class MotionPrimitives(object):
         Falling open under its weight a bend can pass its angle guard with
         its spring still loaded the clamping way (twin: bend III -60 mNm),
         and held there it read as pressing after Home.
+
+        ``row``: the guard row of a partial unclamp when not the plain one
+        (Clamp Sideways' ``unclamp_partial_sideways``).
         """
-        pair = self.guards.pair('unclamp_partial' if partial else 'unclamp', part)
+        pair = self.guards.pair(row or ('unclamp_partial' if partial else 'unclamp'), part)
         self._bends_in_torque(pair)
         if partial:
             guard, text = (lambda v: pair.opened(v.angles)), pair.describe(False)

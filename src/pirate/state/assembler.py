@@ -32,8 +32,13 @@ from pirate.state.odometry import WheelOdometry
 STALE_AFTER_S = 0.3
 #: Largest joint angle an AS5055 reports (half a turn either way).
 ANGLE_MAX_COUNTS = 2048
-#: An accelerometer reading this far from 1 g is not gravity.
+#: An accelerometer reading (all three axes) this far from 1 g is not gravity.
 GRAVITY_TOLERANCE = 0.5
+#: The roll about the robot's axis is read from gravity's (y, z) part only
+#: while that part holds this much of 1 g (pitched at most 60 deg): pitched
+#: steeper, as in a pipe going up or down, the roll is not defined and the
+#: last one read is held (the rotation encoder still tells the parts apart).
+ROLL_MIN_G = 0.5
 #: Largest rotation reading, rad: half a turn either way. The safety limit
 #: is +-0.7 rad (pirate.robot.safety); a reading beyond half a turn is a
 #: broken sensor or a corrupted message, never the module.
@@ -70,7 +75,7 @@ class StateAssembler(object):
         data = list(data)
         _check(board, data)
         if board == tables.IMU_BOARD:
-            self._orientation = _orientation(data)
+            self._orientation = _orientation(data, self._orientation)
         new_cycle = self._previous_board is not None and board <= self._previous_board
         if new_cycle:
             self._odometry.fold()       # the last cycle missed board 28
@@ -142,7 +147,8 @@ def _check(board, data):
         raise BadState('Small State of board %d has %d elements, not %d; dropped'
                        % (board, len(data), tables.SMALL_STATE_SIZE))
     if board == tables.IMU_BOARD:
-        g = math.hypot(data[tables.SS_IMU_Y], data[tables.SS_IMU_Z]) / units.IMU_COUNTS_PER_G
+        g = math.sqrt(sum(data[i] ** 2 for i in (tables.SS_IMU_X, tables.SS_IMU_Y, tables.SS_IMU_Z)))
+        g /= units.IMU_COUNTS_PER_G
         if abs(g - 1.0) > GRAVITY_TOLERANCE:
             raise BadState('IMU of board %d reads %.2f g, not gravity; dropped' % (board, g))
     else:
@@ -172,8 +178,13 @@ def _check_angle(board, counts):
                        % (counts, units.rotation_to_rad(counts), board, ROTATION_READING_MAX_RAD))
 
 
-def _orientation(data):
-    return units.gravity_to_roll(data[tables.SS_IMU_Y], data[tables.SS_IMU_Z])
+def _orientation(data, last_roll):
+    """The roll from gravity's (y, z) part, or ``last_roll`` when the robot is
+    pitched too steeply for that part to define one (:data:`ROLL_MIN_G`)."""
+    g_y, g_z = data[tables.SS_IMU_Y], data[tables.SS_IMU_Z]
+    if math.hypot(g_y, g_z) < ROLL_MIN_G * units.IMU_COUNTS_PER_G:
+        return last_roll
+    return units.gravity_to_roll(g_y, g_z)
 
 
 def _joint_angle(joint, raw):

@@ -137,7 +137,7 @@ class _Planner(object):
                             % (came_from, junction.name, 'front' if sign > 0 else 'rear',
                                self.settings['approach_mm']))
         self._drive((stop_m - self.at) * 1000, 'up to %s' % junction.name)
-        clear_mm = self.settings['turn_end_mm' if is_turn(junction.direction) else 'clear_mm']
+        clear_mm = self._turn_end_mm(junction) if is_turn(junction.direction) else self.settings['clear_mm']
         after_m = (junction.exit_m if sign > 0 else junction.entry_m) + sign * clear_mm / 1000.0
         pab = 'MITRE_BEND' if junction.kind == 'mitre' else 'T_JOINT'
         self.add(pab, junction.direction.upper(), sign * self.settings['search_mm'], self.at, after_m,
@@ -145,6 +145,15 @@ class _Planner(object):
         # The junction PAB ends clamped as it started: a turn lying on the same side (Clamp Sideways
         # straightens toward it), straight on through a T-joint upright (pirate.sequencer.pabs.junction).
         self.at, self.clamp = after_m, clamp
+
+    def _turn_end_mm(self, junction):
+        """How far past the junction a turn leaves the middle, mm: the robot's
+        geometry round the corner, so one figure per pipe diameter."""
+        ends = self.settings['turn_end_mm']
+        if junction.diameter_mm not in ends:
+            raise PlanError('%s: no turn end measured for a %d mm pipe (config/supervisory.yaml turn_end_mm has %s)'
+                            % (junction.name, junction.diameter_mm, ', '.join(str(d) for d in sorted(ends))))
+        return ends[junction.diameter_mm]
 
     def _check_takeable(self, junction):
         can = self.settings['takeable'].get(junction.diameter_mm, {}).get(junction.kind, [])

@@ -291,7 +291,10 @@ class Clamp(Pab):
         self._clamp(ctx, part, clamp_state.row_at(ctx.guards, kind, roll), CUSTOM)
 
     def _unclamp(self, ctx, part):
-        ctx.prims.unclamp(part, partial=True)
+        """Partial unclamp before the part turns: toward a side (Clamp Sideways)
+        the V must open past the chord it meets lying there, or it jams on
+        the walls as the rotation brings it down (``unclamp_partial_sideways``)."""
+        ctx.prims.unclamp(part, partial=True, row=clamp_state.row_at(ctx.guards, 'unclamp_partial', self.target))
         self.clamp[part] = NONE
 
     def _rotate_rear(self, ctx):

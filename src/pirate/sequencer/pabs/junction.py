@@ -144,8 +144,9 @@ TAKEN = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right'), ('tee', 'le
 #: Why a direction of a junction kind is not taken (tried in the twin: notes/issue-10.md, "Turns up" / "Turns down").
 NOT_TAKEN = {
     'up': 'taking a bend up is not built: in the twin the front part was steered into the pipe above and '
-          'clamped there, but the rear could not be brought up (the robot slid back once the rear let go), and '
-          'the robot state drops the IMU of a robot pitched over 60 deg',
+          'clamped there, but the rear could not be brought up: the robot slid back once the rear let go (the '
+          "front V's wheels hold less than the robot weighs), and in a vertical pipe the roll the clamps steer "
+          'by is not defined',
     'down': "steering down needs the V's apex down: the front tilt stops at -0.1 rad and no clamp holds the "
             'robot upside down',
 }
