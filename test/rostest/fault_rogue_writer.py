@@ -8,7 +8,6 @@ with a wall-clock deadline.
 import threading
 import unittest
 
-import actionlib
 import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
@@ -16,6 +15,7 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from pirate import names
 from pirate.msg import ControlArray, PirateAction, PirateGoal, SetpointArray
 from pirate.robot import tables
+from pirate.supervisory.goal_client import SimpleGoalClient
 
 from ready import wait_robot_connected, wait_until
 
@@ -31,7 +31,7 @@ class RogueWriterTest(unittest.TestCase):
         rospy.Subscriber('/diagnostics', DiagnosticArray, diagnostics.append, queue_size=50)
         rospy.Subscriber(names.CONTROL_TOPIC, ControlArray, controls.append, queue_size=50)
         wait_robot_connected()
-        client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
+        client = SimpleGoalClient(names.PIRATE_ACTION, PirateAction)
         self.assertTrue(client.wait_for_server(rospy.Duration(DEADLINE_S)))
         rogue = rospy.Publisher(names.SETPOINT_TOPIC, SetpointArray, queue_size=1)
         wait_until(lambda: rogue.get_num_connections() >= 2, 'the sim and the manager subscribed', DEADLINE_S)

@@ -9,7 +9,6 @@ deadline.
 """
 import unittest
 
-import actionlib
 import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
@@ -17,6 +16,7 @@ from actionlib_msgs.msg import GoalStatus
 from pirate import names
 from pirate.msg import ControlArray, PirateAction, PirateGoal, RobotState, SetpointArray, SmallState
 from pirate.robot import tables
+from pirate.supervisory.goal_client import SimpleGoalClient
 
 from ready import wait_robot_connected, wait_until
 
@@ -38,7 +38,7 @@ class SilentBoardTest(unittest.TestCase):
         cls.states = []
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, cls.states.append, queue_size=50)
         wait_robot_connected()
-        cls.client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
+        cls.client = SimpleGoalClient(names.PIRATE_ACTION, PirateAction)
         assert cls.client.wait_for_server(rospy.Duration(DEADLINE_S))
 
     @classmethod

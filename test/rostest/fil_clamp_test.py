@@ -19,6 +19,7 @@ from std_msgs.msg import String
 
 from pirate import names
 from pirate.msg import PirateAction, PirateGoal, RobotState
+from pirate.supervisory.goal_client import SimpleGoalClient
 
 FAULT_TOPIC = '/fil_robot/fault'
 
@@ -26,7 +27,7 @@ FAULT_TOPIC = '/fil_robot/fault'
 class FilClampTest(unittest.TestCase):
 
     def setUp(self):
-        self.client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
+        self.client = SimpleGoalClient(names.PIRATE_ACTION, PirateAction)
         self.assertTrue(self.client.wait_for_server(rospy.Duration(60)), 'no Pirate Server')
         self.fault = rospy.Publisher(FAULT_TOPIC, String, queue_size=5)
         self.states = []

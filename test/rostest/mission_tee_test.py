@@ -10,7 +10,6 @@ mission ends at its target. Waits on feedback and results, never on sleeps."""
 import threading
 import unittest
 
-import actionlib
 import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
@@ -20,6 +19,7 @@ from seq_experiment import is_safe
 from pirate import names
 from pirate.msg import MissionAction, MissionGoal, PirateActionFeedback, SetpointArray
 from pirate.srv import MissionCommand, ServerStatus
+from pirate.supervisory.goal_client import SimpleGoalClient
 
 WAIT_S = 240.0
 TAKING, LOOKING = 'Taking T-joint', 'looking for the junction'
@@ -30,7 +30,7 @@ class MissionTeeTest(unittest.TestCase):
     def setUp(self):
         rospy.init_node('mission_tee_test')
         wait_robot_connected()
-        self.client = actionlib.SimpleActionClient(names.MISSION_ACTION, MissionAction)
+        self.client = SimpleGoalClient(names.MISSION_ACTION, MissionAction)
         self.assertTrue(self.client.wait_for_server(rospy.Duration(60)))
         rospy.wait_for_service(names.MISSION_COMMAND_SERVICE, 60)
         self.command = rospy.ServiceProxy(names.MISSION_COMMAND_SERVICE, MissionCommand)

@@ -7,7 +7,6 @@ Waits on feedback and results (conditions), never on sleeps."""
 import threading
 import unittest
 
-import actionlib
 import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
@@ -18,6 +17,7 @@ from ready import wait_robot_connected, wait_until
 from pirate import names
 from pirate.msg import MidiInput, MidiOutput, MissionAction, MissionGoal
 from pirate.srv import MissionCommand, ServerStatus
+from pirate.supervisory.goal_client import SimpleGoalClient
 from std_msgs.msg import String
 
 WAIT_S = 120.0
@@ -70,7 +70,7 @@ class MissionTest(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node('mission_test')
         wait_robot_connected()
-        cls.client = actionlib.SimpleActionClient(names.MISSION_ACTION, MissionAction)
+        cls.client = SimpleGoalClient(names.MISSION_ACTION, MissionAction)
         assert cls.client.wait_for_server(rospy.Duration(60))
         rospy.wait_for_service(names.MISSION_COMMAND_SERVICE, 60)
         cls.command = rospy.ServiceProxy(names.MISSION_COMMAND_SERVICE, MissionCommand)

@@ -45,12 +45,12 @@ import ready
 from actionlib_msgs.msg import GoalStatusArray
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import String
-import actionlib
 
 from pirate import names
 from pirate.robot import tables
 from pirate.msg import (MidiInput, MidiOutput, PirateAction, PirateActionResult, PirateGoal, RobotState,
                         SetpointArray)
+from pirate.supervisory.goal_client import SimpleGoalClient
 
 STATUS = {'active': 1, 'preempted': 2, 'succeeded': 3, 'aborted': 4, 'rejected': 5}
 POLL_S = 0.02
@@ -63,7 +63,7 @@ class PanelScenario(unittest.TestCase):
         self.angles, self.leds, self.logs, self.statuses, self.setpoints = {}, {}, [], set(), None
         self.told, self.results = [], []
         rospy.Subscriber(names.OPERATOR_TOPIC, String, self._on_operator)
-        self.other = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
+        self.other = SimpleGoalClient(names.PIRATE_ACTION, PirateAction)
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state)
         rospy.Subscriber(names.MIDI_OUTPUT_TOPIC, MidiOutput, self._on_led)
         rospy.Subscriber('/rosout', Log, self._on_log)

@@ -33,7 +33,6 @@ import time
 import unittest
 import xmlrpc.client
 
-import actionlib
 import rosgraph
 import rosnode
 import rospy
@@ -45,6 +44,7 @@ from actionlib_msgs.msg import GoalStatus
 from pirate import names
 from pirate.sim.chapter6 import pass_counts
 from pirate.msg import PirateAction, PirateGoal, RobotState, SetpointArray
+from pirate.supervisory.goal_client import SimpleGoalClient
 
 UP_S = 60.0                 # wall s for the stack to come up
 GOAL_WALL_S = 120.0         # wall s one goal may take
@@ -77,7 +77,7 @@ class SequencerTest(unittest.TestCase):
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, cls._on_state, queue_size=5)
         if rospy.get_param('~scenario', 'experiment') == 'sigint':
             return      # the test starts its own manager
-        cls.client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
+        cls.client = SimpleGoalClient(names.PIRATE_ACTION, PirateAction)
         if not cls.client.wait_for_server(rospy.Duration(UP_S)):
             raise AssertionError('no Pirate Server within %.0f s' % UP_S)
         cls._wait(lambda: cls.state is not None and not cls.state.stale, 'robot state', UP_S)
@@ -234,7 +234,7 @@ class SequencerTest(unittest.TestCase):
         # a goal while one runs is refused, not queued
         self._send({'name': CLAMP_STRAIGHT})
         self._wait(lambda: self.client.get_state() == GoalStatus.ACTIVE, 'first goal active', 30.0)
-        other = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
+        other = SimpleGoalClient(names.PIRATE_ACTION, PirateAction)
         self.assertTrue(other.wait_for_server(rospy.Duration(UP_S)))
         self._send({'name': PirateGoal.HOME}, client=other)
         state, result, text = self._finish(other)
@@ -270,7 +270,7 @@ class SequencerTest(unittest.TestCase):
             self._wait(lambda: self.setpoint_sub.get_num_connections() > 0 or proc.poll() is not None,
                        'the manager\'s setpoint publisher', UP_S)
             self.assertIsNone(proc.poll(), 'manager exited early')
-            client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
+            client = SimpleGoalClient(names.PIRATE_ACTION, PirateAction)
             self.assertTrue(client.wait_for_server(rospy.Duration(UP_S)))
             with self.lock:
                 del self.setpoints[:]

@@ -13,7 +13,6 @@ import math
 import os
 import time
 
-import actionlib
 import numpy
 import rospy
 import rostest
@@ -23,6 +22,7 @@ import ready
 import viz_rviz
 from pirate import names
 from pirate.msg import PirateAction, PirateGoal
+from pirate.supervisory.goal_client import SimpleGoalClient
 from pirate.world.network import world_path
 from pirate.viz import world_markers
 from pirate.world import network
@@ -42,7 +42,7 @@ class SimWorldRvizTest(viz_rviz.VizRvizTest):
 
     def test_world_and_true_pose(self):
         ready.wait_robot_connected()
-        client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
+        client = SimpleGoalClient(names.PIRATE_ACTION, PirateAction)
         self.assertTrue(client.wait_for_server(rospy.Duration(60)))
         client.send_goal(PirateGoal(name=0, pipe_diameter=90))
         self.assertTrue(client.wait_for_result(rospy.Duration(120)))

@@ -15,7 +15,6 @@ import unittest
 
 from xmlrpc.client import ServerProxy
 
-import actionlib
 import rosgraph
 import rosnode
 import rospy
@@ -25,6 +24,7 @@ import ready
 
 from pirate import names
 from pirate.msg import PirateAction, PirateGoal
+from pirate.supervisory.goal_client import SimpleGoalClient
 from pirate.viz import plot_cli
 
 # The repository (not the workspace's folder of links): results land in its test-results/.
@@ -67,7 +67,7 @@ class VizPlotClampTest(unittest.TestCase):
         recorder = subprocess.Popen(['roslaunch', 'pirate', 'record.launch', 'bag:=' + BAG],
                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         try:
-            client = actionlib.SimpleActionClient(names.PIRATE_ACTION, PirateAction)
+            client = SimpleGoalClient(names.PIRATE_ACTION, PirateAction)
             self.assertTrue(client.wait_for_server(rospy.Duration(60)), 'no Pirate Server')
             ready.wait_robot_connected(60)
             deadline = time.monotonic() + 60

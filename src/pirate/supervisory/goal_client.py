@@ -7,7 +7,9 @@ client ignores (and logs as an error, "Got a transition callback on a goal
 handle that we're not tracking") a status that reaches it before its
 ``send_goal`` has returned the new handle - which a fast server causes.
 Here the transition callback only wakes the waiter, which reads its own
-handle, so nothing arrives untracked.
+handle, so nothing arrives untracked. :class:`SimpleGoalClient` offers the
+simple client's interface the same way, for the route client and the
+rostests.
 
 The time limit is robot time (``now``: rospy.get_time, the simulated clock
 under /use_sim_time), as the callers' ``~goal_timeout`` / ``--timeout``
@@ -32,6 +34,11 @@ STATUS = {GoalStatus.SUCCEEDED: 'succeeded', GoalStatus.ABORTED: 'aborted', Goal
 #: ``interrupted`` (both cancelled here); ``result`` the Pirate result or None.
 Ending = collections.namedtuple('Ending', 'status message result')
 WAKE_S = 0.1
+#: Where a goal ends only after the server accepted it (active_cb was due).
+ACCEPTED_ENDINGS = (GoalStatus.SUCCEEDED, GoalStatus.ABORTED, GoalStatus.PREEMPTED)
+#: Client states of a goal the server has not accepted yet.
+NOT_YET_ACTIVE = (actionlib.CommState.WAITING_FOR_GOAL_ACK, actionlib.CommState.PENDING,
+                  actionlib.CommState.RECALLING)
 
 
 class GoalClient(object):
@@ -73,6 +80,104 @@ class GoalClient(object):
     def _wake(self, _handle):
         with self._cond:
             self._cond.notify_all()
+
+
+class SimpleGoalClient(object):
+    """actionlib.SimpleActionClient's interface on actionlib.ActionClient,
+    without its race (module docstring): every state is read from the goal's
+    own handle, so a goal that a fast server ended before :meth:`send_goal`
+    returned is seen ended. With the simple client such a goal's result was
+    dropped and ``wait_for_result`` never returned (CI: a Clamp Straight sent
+    to a robot already clamped there succeeds with 0 primitives at once).
+
+    ``client``: an ActionClient (made from ``ns`` and ``spec`` when None).
+    Callbacks as the simple client's: ``done_cb(state, result)`` once,
+    ``active_cb()`` once, ``feedback_cb(feedback)``.
+    """
+
+    def __init__(self, ns=None, spec=None, client=None):
+        self._client = client if client is not None else actionlib.ActionClient(ns, spec)
+        self._cond = threading.Condition()
+        self._handle = None
+        self._callbacks = {}
+        self._called = set()          # callbacks called for this goal; 'done' once it ended
+
+    def wait_for_server(self, timeout=rospy.Duration()):
+        return self._client.wait_for_server(timeout)
+
+    def send_goal(self, goal, done_cb=None, active_cb=None, feedback_cb=None):
+        """Send ``goal``; from now on this client follows it (no cancel of the last)."""
+        with self._cond:
+            self._callbacks = {'done': done_cb, 'active': active_cb, 'feedback': feedback_cb}
+            self._called = set()
+            self._handle = None
+            handle = self._client.send_goal(goal, transition_cb=self._on_transition, feedback_cb=self._on_feedback)
+            self._handle = handle
+            self._catch_up()
+
+    def wait_for_result(self, timeout=rospy.Duration()):
+        """True once the goal ended, within ``timeout`` (ROS time, 0: no limit)."""
+        deadline = rospy.get_rostime() + timeout
+        with self._cond:
+            while self._handle is not None and not self._ended():
+                left = (deadline - rospy.get_rostime()).to_sec()
+                if (not timeout.is_zero() and left <= 0) or rospy.is_shutdown():
+                    break
+                self._cond.wait(WAKE_S)
+            return self._handle is not None and self._ended()
+
+    def get_state(self):
+        """The goal's GoalStatus (LOST before any goal), as the simple client says it."""
+        if self._handle is None:
+            return GoalStatus.LOST
+        status = self._handle.get_goal_status()
+        return {GoalStatus.RECALLING: GoalStatus.PENDING, GoalStatus.PREEMPTING: GoalStatus.ACTIVE}.get(status, status)
+
+    def get_result(self):
+        return self._handle.get_result() if self._handle is not None else None
+
+    def get_goal_status_text(self):
+        return self._handle.get_goal_status_text() if self._handle is not None else ''
+
+    def cancel_goal(self):
+        """Cancel the goal unless it ended: actionlib's handle.cancel() on an
+        ended goal sets it waiting for a cancel ack that never comes."""
+        with self._cond:
+            handle = self._handle if self._handle is not None and not self._ended() else None
+        if handle is not None:
+            handle.cancel()     # outside our lock: actionlib calls our callbacks holding its own
+
+    def _ended(self):
+        return 'ended' in self._called or self._handle.get_comm_state() == actionlib.CommState.DONE
+
+    def _on_transition(self, handle):
+        with self._cond:
+            if self._handle is not None and handle == self._handle:
+                self._catch_up()
+
+    def _on_feedback(self, handle, feedback):
+        with self._cond:
+            callback = self._callbacks.get('feedback') if self._handle is not None and handle == self._handle else None
+        if callback:
+            callback(feedback)
+
+    def _catch_up(self):
+        """Call active_cb / done_cb once each for what the handle has reached;
+        wake the waiters. Called with the lock held."""
+        comm, status = self._handle.get_comm_state(), self._handle.get_goal_status()
+        if comm == actionlib.CommState.DONE:
+            if status in ACCEPTED_ENDINGS:
+                self._call_once('active')
+            self._called.add('ended')
+            self._call_once('done', self.get_state(), self._handle.get_result())
+        elif comm not in NOT_YET_ACTIVE:
+            self._call_once('active')
+        self._cond.notify_all()
+
+    def _call_once(self, name, *args):
+        if name not in self._called and self._callbacks.get(name):
+            self._called.add(name)
+            self._callbacks[name](*args)
 
 
 def wait_for_server(client, wall_s):

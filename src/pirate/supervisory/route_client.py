@@ -9,14 +9,13 @@ what it waits for) and its log, and cancels the mission on Ctrl-C.
 import sys
 import threading
 
-import actionlib
 import rospy
 from actionlib_msgs.msg import GoalStatus
 
 from pirate import names
 from pirate.msg import MissionAction, MissionGoal
 from pirate.supervisory import planner
-from pirate.supervisory.goal_client import wait_for_server
+from pirate.supervisory.goal_client import SimpleGoalClient, wait_for_server
 from pirate.supervisory.plan_cli import load_settings
 from pirate.world import network
 
@@ -47,7 +46,7 @@ def run_route(args, out=print):
             print('run_mission: %s' % refused, file=sys.stderr)
             return 2
     rospy.init_node('run_mission', anonymous=True)
-    client = actionlib.SimpleActionClient(names.MISSION_ACTION, MissionAction)
+    client = SimpleGoalClient(names.MISSION_ACTION, MissionAction)
     if not wait_for_server(client, WAIT_FOR_SERVER_S):
         print('run_mission: no mission executive at %s (roslaunch pirate mission_executive.launch)'
               % names.MISSION_ACTION, file=sys.stderr)
