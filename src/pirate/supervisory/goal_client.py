@@ -90,20 +90,21 @@ class SimpleGoalClient(object):
     dropped and ``wait_for_result`` never returned (CI: a Clamp Straight sent
     to a robot already clamped there succeeds with 0 primitives at once).
 
-    ``client``: an ActionClient (made from ``ns`` and ``spec`` when None).
+    ``client``: an ActionClient (made from ``ns`` and ``spec`` when None),
+    kept as ``action_client`` as the simple client keeps its own.
     Callbacks as the simple client's: ``done_cb(state, result)`` once,
     ``active_cb()`` once, ``feedback_cb(feedback)``.
     """
 
     def __init__(self, ns=None, spec=None, client=None):
-        self._client = client if client is not None else actionlib.ActionClient(ns, spec)
+        self.action_client = client if client is not None else actionlib.ActionClient(ns, spec)
         self._cond = threading.Condition()
         self._handle = None
         self._callbacks = {}
         self._called = set()          # callbacks called for this goal; 'done' once it ended
 
     def wait_for_server(self, timeout=rospy.Duration()):
-        return self._client.wait_for_server(timeout)
+        return self.action_client.wait_for_server(timeout)
 
     def send_goal(self, goal, done_cb=None, active_cb=None, feedback_cb=None):
         """Send ``goal``; from now on this client follows it (no cancel of the last)."""
@@ -111,7 +112,7 @@ class SimpleGoalClient(object):
             self._callbacks = {'done': done_cb, 'active': active_cb, 'feedback': feedback_cb}
             self._called = set()
             self._handle = None
-            handle = self._client.send_goal(goal, transition_cb=self._on_transition, feedback_cb=self._on_feedback)
+            handle = self.action_client.send_goal(goal, transition_cb=self._on_transition, feedback_cb=self._on_feedback)
             self._handle = handle
             self._catch_up()
 
