@@ -101,7 +101,7 @@ class SimpleGoalClient(object):
         self._cond = threading.Condition()
         self._handle = None
         self._callbacks = {}
-        self._called = set()          # callbacks called for this goal; 'done' once it ended
+        self._called = set()          # callbacks called for this goal, and 'ended' once it ended
 
     def wait_for_server(self, timeout=rospy.Duration()):
         return self.action_client.wait_for_server(timeout)
