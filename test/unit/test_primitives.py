@@ -148,6 +148,39 @@ def test_full_unclamp_front_uses_its_own_guards(rig):
     assert [feed.waits[0][1](s) for s in feed.states] == [False, True]
 
 
+def stamped(stamp, efforts=None, **angles):
+    return view(efforts, **angles)._replace(stamp=stamp)
+
+
+def test_a_full_unclamp_whose_bends_stand_still_is_blocked(rig):
+    """Half round a junction the walls hold the bends (twin: a turn cancelled
+    while steering, then Home): once neither bend nor spring has moved for
+    config/sequencer.yaml unclamp.no_progress_s of robot time, the unclamp
+    ends blocked instead of pushing at the unclamp torque for 15 s."""
+    prims, feed, _ = rig
+    window = prims.guards.unclamp['no_progress_s']
+    feed.states = [stamped(t, {'bend_i': 120.0, 'bend_ii': -80.0}, bend_i=-0.45, bend_ii=-0.38)
+                   for t in (0.0, window / 2, window, window + 0.1)]
+    with pytest.raises(TimedOut, match='unclamp front blocked: bend_i -0.45 rad, bend_ii -0.38 rad stood still'):
+        prims.unclamp('front')
+
+
+@pytest.mark.parametrize('moving', ['bend', 'spring'])
+def test_a_slow_full_unclamp_is_not_blocked(rig, moving):
+    """A bend creeping open, or its motor still unwinding the spring with the
+    angle standing, is progress: the unclamp runs on to its guard."""
+    prims, feed, _ = rig
+    window = prims.guards.unclamp['no_progress_s']
+    states = []
+    for step in range(int(4 * window) + 1):         # one state a second of robot time
+        angle = -0.9 + (0.02 * step if moving == 'bend' else 0.0)
+        spring = 200.0 - (0.0 if moving == 'bend' else 15.0 * step)
+        states.append(stamped(float(step), {'bend_i': spring}, bend_i=angle, bend_ii=0.45))
+    feed.states = states + [stamped(len(states) + 1.0, {}, bend_i=-0.2, bend_ii=0.03)]
+    prims.unclamp('front')
+    assert prims.executed == ['unclamp front']
+
+
 # --- rotate / align --------------------------------------------------------
 
 @pytest.mark.parametrize('target', [0.71, -0.71, 0.7 + 1e-6 + 0.001, math.nan, math.inf])

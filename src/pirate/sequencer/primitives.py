@@ -25,6 +25,37 @@ class Refused(ValueError):
     """A primitive asked for something outside the robot's limits."""
 
 
+class BendProgress(object):
+    """Bends driven open must move (``settings``: config/sequencer.yaml
+    ``unclamp``): a bend angle or its spring, every ``no_progress_s`` of robot
+    time. Where something holds them (a robot cancelled half round a junction,
+    its modules against the walls) the unclamp ends blocked at once instead of
+    pushing at the unclamp torque until the primitive timeout."""
+
+    def __init__(self, settings, joints, what):
+        self.window_s = settings['no_progress_s']
+        self.min_rad, self.min_mnm = settings['no_progress_rad'], settings['no_progress_mnm']
+        self.joints, self.what = joints, what
+        self.mark = None
+
+    def check(self, view):
+        """False while the bends move (the guard is not reached); TimedOut once blocked."""
+        angles = [view.angles[j] for j in self.joints]
+        efforts = [(view.efforts or {}).get(j, 0.0) for j in self.joints]
+        if self.mark is None or self._moved(angles, efforts):
+            self.mark = (view.stamp, angles, efforts)
+        elif view.stamp - self.mark[0] > self.window_s:
+            raise TimedOut('%s blocked: %s stood still for %.1f s without opening (something holds them: '
+                           'the walls of a junction?)' % (self.what, ', '.join(
+                               '%s %.2f rad' % (j, a) for j, a in zip(self.joints, angles)), self.window_s))
+        return False
+
+    def _moved(self, angles, efforts):
+        _, mark_angles, mark_efforts = self.mark
+        return (any(abs(a - m) >= self.min_rad for a, m in zip(angles, mark_angles))
+                or any(abs(e - m) >= self.min_mnm for e, m in zip(efforts, mark_efforts)))
+
+
 def report_kind(kind):
     """The report's primitive for guard row ``kind``: a ``*_sideways`` row is
     the same primitive with the guards of a robot lying on a side."""
@@ -168,7 +199,9 @@ class MotionPrimitives(object):
         if partial:
             guard, text = (lambda v: pair.opened(v.angles)), pair.describe(False)
         else:
-            guard = lambda v: pair.opened(v.angles) and not clamp_state.pressing(self.guards, part, v.efforts)  # noqa: E731
+            moving = BendProgress(self.guards.unclamp, (pair.outer.joint, pair.inner.joint), 'unclamp %s' % part)
+            guard = lambda v: (pair.opened(v.angles) and not clamp_state.pressing(self.guards, part, v.efforts)  # noqa: E731
+                               or moving.check(v))
             text = '%s and no spring pressing' % pair.describe(False)
         self.wait_for('unclamp %s%s' % (part, ' partial' if partial else ''), guard, text)
         if partial:
