@@ -31,7 +31,10 @@ class Handle(object):
         return self.result
 
     def cancel(self):
+        """As actionlib's: sent whatever the state, and the handle then waits for a
+        cancel ack (on a goal that has ended, one that never comes)."""
         self.cancelled.set()
+        self.state = actionlib.CommState.WAITING_FOR_CANCEL_ACK
 
 
 class Client(object):
@@ -40,15 +43,17 @@ class Client(object):
     def __init__(self):
         self.handle, self.sent, self._cb = Handle(), threading.Event(), None
 
-    def send_goal(self, goal, transition_cb):
+    def send_goal(self, goal, transition_cb, feedback_cb=None):
         self._cb = transition_cb
         self.sent.set()
         return self.handle
 
-    def finish(self, status, message='done'):
+    def finish(self, status, message='done', notify=True):
+        """The goal ends; ``notify`` False: its transition callback has not run yet."""
         self.handle.result = PirateResult(message=message)
         self.handle.state, self.handle.status = actionlib.CommState.DONE, status
-        self._cb(self.handle)
+        if notify:
+            self._cb(self.handle)
 
 
 class RobotClock(object):
@@ -113,6 +118,21 @@ def test_cancel_from_another_thread_reaches_the_running_goal():
     thread.join(WAIT_S)
     assert out['ending'].status == 'preempted'
     goals.cancel()                            # nothing runs: nothing to cancel, no error
+
+
+def test_a_cancel_that_meets_the_goal_ending_is_not_sent():
+    """The executive cancels just as the goal ends, before the waiter has seen
+    it: a cancel sent then leaves actionlib waiting for an ack that never comes,
+    and the waiter (robot time standing still here) would never return."""
+    client = Client()
+    goals = GoalClient(client, 600.0, RobotClock(0.0), lambda: False)
+    thread, out = _in_thread(goals)
+    assert client.sent.wait(WAIT_S)
+    client.finish(GoalStatus.SUCCEEDED, 'clamped', notify=False)
+    goals.cancel()
+    thread.join(WAIT_S)
+    assert not client.handle.cancelled.is_set()
+    assert out['ending'].status == 'succeeded' and out['ending'].message == 'clamped'
 
 
 @pytest.mark.parametrize('status, seen', [('timeout', 'aborted'), ('interrupted', 'aborted'),

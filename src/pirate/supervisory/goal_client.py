@@ -8,8 +8,10 @@ handle that we're not tracking") a status that reaches it before its
 ``send_goal`` has returned the new handle - which a fast server causes.
 Here the transition callback only wakes the waiter, which reads its own
 handle, so nothing arrives untracked. :class:`SimpleGoalClient` offers the
-simple client's interface the same way, for the route client and the
-rostests.
+simple client's interface that way (the route client, the rostests), and
+:class:`GoalClient` waits on it in robot time (the mission runner, the
+executive). Neither cancels a goal that has ended: actionlib's
+``cancel()`` would leave it waiting for a cancel ack that never comes.
 
 The time limit is robot time (``now``: rospy.get_time, the simulated clock
 under /use_sim_time), as the callers' ``~goal_timeout`` / ``--timeout``
@@ -42,44 +44,32 @@ NOT_YET_ACTIVE = (actionlib.CommState.WAITING_FOR_GOAL_ACK, actionlib.CommState.
 
 
 class GoalClient(object):
-    """One Pirate goal at a time; :meth:`cancel` from any thread."""
+    """One Pirate goal at a time, waited for in robot time; :meth:`cancel`
+    from any thread. Built on :class:`SimpleGoalClient`, so a cancel that
+    meets a goal just ending is not sent (actionlib would then wait for a
+    cancel ack that never comes, and :meth:`run` until its time limit)."""
 
     def __init__(self, client, timeout_s, now, is_shutdown):
-        self._client, self.timeout_s = client, timeout_s
-        self._now, self._is_shutdown = now, is_shutdown
-        self._cond = threading.Condition()
-        self._handle = None
+        self._goal = SimpleGoalClient(client=client)
+        self.timeout_s, self._now, self._is_shutdown = timeout_s, now, is_shutdown
 
     def run(self, goal):
         """Send ``goal`` and wait for its end: an :data:`Ending`."""
         deadline = self._now() + self.timeout_s
-        with self._cond:
-            self._handle = self._client.send_goal(goal, transition_cb=self._wake)
-            while not self._done() and not self._is_shutdown() and self._now() < deadline:
-                self._cond.wait(WAKE_S)
-            handle, self._handle = self._handle, None
-        if handle.get_comm_state() != actionlib.CommState.DONE:
-            handle.cancel()
-            if self._is_shutdown():
-                return Ending('interrupted', 'stopped while the goal ran; goal cancelled', None)
-            return Ending('timeout', 'no result within %.0f s; goal cancelled' % self.timeout_s, None)
-        result = handle.get_result()
-        status = STATUS.get(handle.get_goal_status(), 'aborted')
+        self._goal.send_goal(goal)
+        while not self._goal.wait_ended(WAKE_S):
+            if self._is_shutdown() or self._now() >= deadline:
+                self._goal.cancel_goal()
+                if self._is_shutdown():
+                    return Ending('interrupted', 'stopped while the goal ran; goal cancelled', None)
+                return Ending('timeout', 'no result within %.0f s; goal cancelled' % self.timeout_s, None)
+        result = self._goal.get_result()
+        status = STATUS.get(self._goal.get_state(), 'aborted')
         return Ending(status, result.message if result is not None else 'no result', result)
 
     def cancel(self):
-        """Cancel the goal running now, if any."""
-        with self._cond:
-            handle = self._handle
-        if handle is not None:
-            handle.cancel()
-
-    def _done(self):
-        return self._handle.get_comm_state() == actionlib.CommState.DONE
-
-    def _wake(self, _handle):
-        with self._cond:
-            self._cond.notify_all()
+        """Cancel the goal running now, if any (not one that has ended)."""
+        self._goal.cancel_goal()
 
 
 class SimpleGoalClient(object):
@@ -118,13 +108,20 @@ class SimpleGoalClient(object):
 
     def wait_for_result(self, timeout=rospy.Duration()):
         """True once the goal ended, within ``timeout`` (ROS time, 0: no limit)."""
+        if self._handle is None:
+            return False
         deadline = rospy.get_rostime() + timeout
+        while not self.wait_ended(WAKE_S):
+            if (not timeout.is_zero() and rospy.get_rostime() >= deadline) or rospy.is_shutdown():
+                return False
+        return True
+
+    def wait_ended(self, wall_s):
+        """True once the goal ended; False if it has not within ``wall_s``
+        wall seconds (woken early by each of its transitions), or no goal was sent."""
         with self._cond:
-            while self._handle is not None and not self._ended():
-                left = (deadline - rospy.get_rostime()).to_sec()
-                if (not timeout.is_zero() and left <= 0) or rospy.is_shutdown():
-                    break
-                self._cond.wait(WAKE_S)
+            if self._handle is not None and not self._ended():
+                self._cond.wait(wall_s)
             return self._handle is not None and self._ended()
 
     def get_state(self):
