@@ -84,7 +84,17 @@ DRIVING_IN = 'driving into the new pipe'
 #: (full, as the robot senses it: angles and spring); straight: the rear's
 #: roll in Table 5.4's straight region around the clamp it started in;
 #: turn: the goal turns into a new pipe (data of the goal, not sensed).
-Facts = collections.namedtuple('Facts', 'found front rear straight turn')
+#: Where in a turn a cancelled robot stands, as it senses it (the ``turn``
+#: row's angles; read after every step, looked at only from CHANGE_MODES):
+#: toward: the rear's roll within the nominal band (Table 5.4) around the
+#: side the goal turns to; front_round: Bend II round the corner (the front
+#: has turned into the new pipe, :func:`_steered`); middle_round: Bend III
+#: at least ``resume_middle_rad`` (the middle swinging round; a straight
+#: pipe keeps it below); middle_swung: Bend III at least ``swing_rad``;
+#: rear_round: Bend IV at least ``resume_rear_rad`` (the rear V bent toward
+#: the turn side, coming round the corner).
+Facts = collections.namedtuple('Facts', 'found front rear straight turn toward front_round middle_round middle_swung '
+                                        'rear_round', defaults=(False,) * 5)
 
 FOUND = Guard('junction sensed', lambda f: f.found)
 TURN = Guard('turn', lambda f: f.turn)
@@ -92,9 +102,39 @@ ON = Guard('NOT turn', lambda f: not f.turn)
 DONE = Guard('NOT turn AND front clamped AND rear clamped AND straight',
              lambda f: not f.turn and f.front and f.rear and f.straight)
 
+
+def _in_a_corner(f):
+    """Some bend says the robot is (partly) round a corner."""
+    return f.front_round or f.middle_round or f.middle_swung or f.rear_round
+
+
+#: A turn from its start: clamped sideways toward it, no bend round a corner.
+START = Guard('turn AND front clamped AND rear clamped AND straight AND NOT in a corner',
+              lambda f: f.turn and f.front and f.rear and f.straight and not _in_a_corner(f))
+#: Resuming a turn cancelled on the way (re-sent, same direction): the step
+#: that continues it from what the robot senses. Each needs the roll toward
+#: the goal's side; "in a corner" is front_round OR middle_round OR
+#: middle_swung OR rear_round.
+RESUME_STEERING = Guard('turn AND toward AND rear clamped AND NOT front clamped AND NOT in a corner',
+                        lambda f: f.turn and f.toward and f.rear and not f.front and not _in_a_corner(f))
+RESUME_AT_CORNER = Guard('turn AND toward AND rear clamped AND front_round AND NOT middle_round AND NOT middle_swung',
+                         lambda f: f.turn and f.toward and f.rear and f.front_round and not f.middle_round
+                         and not f.middle_swung)
+RESUME_SWINGING = Guard('turn AND toward AND rear clamped AND middle_round AND NOT middle_swung',
+                        lambda f: f.turn and f.toward and f.rear and f.middle_round and not f.middle_swung)
+RESUME_BRINGING = Guard('turn AND toward AND front clamped AND (rear clamped AND middle_swung OR NOT rear clamped '
+                        'AND (middle_round OR middle_swung OR rear_round))',
+                        lambda f: f.turn and f.toward and f.front and (
+                            (f.rear and f.middle_swung)
+                            or (not f.rear and (f.middle_round or f.middle_swung or f.rear_round))))
+
 MACHINE = StateMachine(CHANGE_MODES, (
     Transition(CHANGE_MODES, SEARCHING, ON),
-    Transition(CHANGE_MODES, LIFTING_FRONT, TURN),
+    Transition(CHANGE_MODES, LIFTING_FRONT, START),
+    Transition(CHANGE_MODES, STEERING_FRONT, RESUME_STEERING),
+    Transition(CHANGE_MODES, CLAMPING_AT_CORNER, RESUME_AT_CORNER),
+    Transition(CHANGE_MODES, SWINGING_MIDDLE, RESUME_SWINGING),
+    Transition(CHANGE_MODES, BRINGING_REAR, RESUME_BRINGING),
     Transition(SEARCHING, STOPPING, FOUND),
     Transition(STOPPING, UNCLAMPING_FRONT, ALWAYS),
     Transition(LIFTING_FRONT, UNCLAMPING_FRONT, ALWAYS),
@@ -179,7 +219,6 @@ class TakeJunction(Pab):
         self.sensor = None
         self.steered = None          # the RobotView in which the front had turned into the new pipe
         self.start_mm = None
-        self.target = UPRIGHT        # rad: the clamp it starts in (read when it starts)
 
     # --- accepting ----------------------------------------------------------
     def check(self, goal, view, guards):
@@ -208,12 +247,57 @@ class TakeJunction(Pab):
         return None
 
     def _check_clamp(self, view, guards):
+        """Accept a robot the table can start (or, for a turn, resume) from;
+        else the reason, saying where in a corner the robot senses it is."""
+        facts = self.sensed_facts(guards, view)
+        corner = _corner_text(guards, view, facts)
+        if self.turning:
+            if _first_step(facts) is not None:
+                return None
+            return self._turn_refusal(view, guards, facts, corner)
         sensed = clamp_state.sensed(guards, view)
-        if sensed != (clamp_state.FULL, clamp_state.FULL) or not self._held(view, guards):
-            return ('%s %s starts clamped %s (report 4.7.4); the robot is %s at %.2f rad'
-                    % (self.label, self.direction.upper(), ' or '.join(self.clamps),
-                       clamp_state.idle_state(sensed), view.orientation))
+        if sensed != (clamp_state.FULL, clamp_state.FULL) or not self._held(view, guards) or corner:
+            return self._start_text(view, guards) + (
+                '; it is half round a corner toward the %s (%s): re-send that turn to finish it'
+                % (_side_turned(guards, view), corner) if corner else '')
         return None
+
+    def _start_text(self, view, guards):
+        return ('%s %s starts clamped %s (report 4.7.4); the robot is %s at %.2f rad'
+                % (self.label, self.direction.upper(), ' or '.join(self.clamps),
+                   clamp_state.idle_state(clamp_state.sensed(guards, view)), view.orientation))
+
+    def _turn_refusal(self, view, guards, facts, corner):
+        """Why a turn can neither start nor resume from what the robot senses."""
+        clamp = 'Clamp Sideways %s' % self.direction.upper()
+        if corner and not facts.toward:
+            return ('%s %s cannot finish this turn: the robot is half round a corner toward the %s (%s; roll %.2f '
+                    'rad): re-send the turn toward the %s' % (self.label, self.direction.upper(),
+                                                              _side_turned(guards, view), corner, view.orientation,
+                                                              _side_turned(guards, view)))
+        if corner:
+            return ('%s %s cannot finish the turn from here: half round the corner (%s) with the robot %s; it '
+                    'resumes with the rear clamped before the middle has swung, or the front clamped after'
+                    % (self.label, self.direction.upper(), corner,
+                       clamp_state.idle_state(clamp_state.sensed(guards, view))))
+        if facts.toward and facts.front and not facts.rear:
+            return ('%s; %s first (a turn cancelled while clamping its rear past the corner reads the same: '
+                    '%s then ends it there, 150 mm short of its end; the robot cannot sense which)'
+                    % (self._start_text(view, guards), clamp, clamp))
+        return '%s; %s first' % (self._start_text(view, guards), clamp)
+
+    def sensed_facts(self, guards, view, found=False):
+        """:data:`Facts` of the robot in ``view`` for this goal (``found``: the PAB's own, not sensed)."""
+        sensed = clamp_state.sensed(guards, view)
+        corner = _corner_facts(guards, view) if guards.has('turn') else {}
+        return Facts(found=found, front=sensed.front == clamp_state.FULL, rear=sensed.rear == clamp_state.FULL,
+                     straight=in_region(view.orientation, region_around(guards, 'straight', self._target())),
+                     turn=self.turning,
+                     toward=in_region(view.orientation, region_around(guards, 'nominal', self._target())), **corner)
+
+    def _target(self):
+        """The roll (rad) of the clamp this goal starts in: the side of a turn, upright straight on."""
+        return ORIENTATIONS[self.clamps[0]]
 
     def _held(self, view, guards):
         """Orientations (rad) of the allowed clamps whose straight region holds the robot's roll."""
@@ -237,7 +321,7 @@ class TakeJunction(Pab):
             UNCLAMPING_REAR: lambda ctx: ctx.prims.unclamp('rear', partial=True),
             CROSSING_REAR: lambda ctx: _drive_by(ctx, 'drive rear across', 'cross_rear_mm'),
             CLAMPING_REAR: lambda ctx: _clamp(ctx, 'rear'),
-            STRAIGHTENING: lambda ctx: Clamp(self.target).run(ctx),
+            STRAIGHTENING: lambda ctx: Clamp(self._target()).run(ctx),
             LIFTING_FRONT: lambda ctx: ctx.prims.move_front('move_front_turn'),
             STEERING_FRONT: self._steer_front,
             CLAMPING_AT_CORNER: _clamp_at_corner,
@@ -247,18 +331,15 @@ class TakeJunction(Pab):
         }
 
     def facts(self, ctx):
-        view = ctx.feed.latest()
-        sensed = clamp_state.sensed(ctx.guards, view)
-        return Facts(found=self.steered is not None or (self.sensor is not None and self.sensor.sensed is not None),
-                     front=sensed.front == clamp_state.FULL, rear=sensed.rear == clamp_state.FULL,
-                     straight=in_region(view.orientation, region_around(ctx.guards, 'straight', self.target)),
-                     turn=self.turning)
+        found = self.steered is not None or (self.sensor is not None and self.sensor.sensed is not None)
+        return self.sensed_facts(ctx.guards, ctx.feed.latest(), found)
 
     def _change_modes(self, ctx):
-        """Rotation in position, front module in PWM; remember the clamp it starts in."""
-        self.target = (self._held(ctx.feed.latest(), ctx.guards) or [UPRIGHT])[0]
+        """Rotation in position, front module in PWM; a turn presses its clamped parts again."""
         ctx.prims.change_control_mode('rotation', 'position')
         ctx.prims.change_control_mode('front_tilt', 'pwm')
+        if self.turning:
+            _press_what_is_clamped(ctx)
 
     def _search(self, ctx):
         """Drive until the junction is sensed, or JunctionMissing after the goal's distance."""
@@ -306,9 +387,64 @@ class TakeJunction(Pab):
         self.junction_odometry = view.odometry - start.odometry
 
     def summary(self, ctx):
+        if math.isnan(self.junction_odometry):
+            return ('%s %s: resumed where the robot stood in the corner, %d motion primitives, ended clamped'
+                    % (self.kind, self.direction, len(ctx.prims.executed)))
         why = self.sensor.sensed.why if self.sensor is not None else 'the front turned into the new pipe'
         return ('%s %s: junction sensed %.0f mm after the start (%s), %d motion primitives, ended clamped'
                 % (self.kind, self.direction, self.junction_odometry, why, len(ctx.prims.executed)))
+
+
+def _first_step(facts):
+    """The state the table enters from CHANGE_MODES with ``facts``, or None."""
+    fired = [t.target for t in MACHINE.exits(CHANGE_MODES) if t.guard.test(facts)]
+    return fired[0] if len(fired) == 1 else None
+
+
+def _press_what_is_clamped(ctx):
+    """Each part whose outer spring presses the wall back in torque at its
+    clamp setpoint, the inner bend at 0, as a clamp leaves it. A turn
+    re-sent after a cancel finds its clamped parts held by their worms at
+    PWM 0 (the safe hold); the steps it resumes pull against those clamps
+    (twin: resumed without this, the middle did not swing round and the
+    front did not pull the rear through, 60 s each). From a fresh start it
+    sets what Clamp Sideways left."""
+    guards, view = ctx.guards, ctx.feed.latest()
+    for part in clamp_state.PARTS:
+        roll = clamp_state.part_roll(part, view.angles, view.orientation)
+        pair = guards.pair(clamp_state.full_row(guards, roll), part)
+        if clamp_state.presses_wall(guards, pair.outer, view.efforts):
+            _torque(ctx.prims, **{pair.outer.joint: pair.outer.setpoint, pair.inner.joint: 0})
+
+
+def _corner_facts(guards, view):
+    """The sensed corner facts of :data:`Facts` (``turn`` row angles, rad)."""
+    row, angles = guards.row('turn'), view.angles
+    return dict(front_round=_steered(row, view),
+                middle_round=angles['bend_iii'] >= float(row['resume_middle_rad']),
+                middle_swung=angles['bend_iii'] >= float(row['swing_rad']),
+                rear_round=angles['bend_iv'] >= float(row['resume_rear_rad']))
+
+
+def _corner_text(guards, view, facts):
+    """What says the robot is round a corner ('' when nothing does), for a refusal."""
+    angles, said = view.angles, []
+    if facts.front_round:
+        said.append('Bend II %.2f rad: the front turned into the new pipe' % angles['bend_ii'])
+    if facts.middle_round or facts.middle_swung:
+        said.append('Bend III %.2f rad: the middle swinging round' % angles['bend_iii'])
+    if facts.rear_round:
+        said.append('Bend IV %+.2f rad: the rear V coming round' % angles['bend_iv'])
+    return ', '.join(said)
+
+
+def _side_turned(guards, view):
+    """LEFT / RIGHT: the side (Fig 4.7) whose nominal band holds the roll; clamped
+    sideways toward a turn the robot lies on it. 'unknown side' otherwise."""
+    for clamp in ('sideways LEFT', 'sideways RIGHT'):
+        if in_region(view.orientation, region_around(guards, 'nominal', ORIENTATIONS[clamp])):
+            return clamp.split()[1]
+    return 'unknown side'
 
 
 def _taken_text():
