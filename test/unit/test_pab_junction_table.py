@@ -4,7 +4,11 @@
   facts at most one transition fires per state, exactly one when the
   facts agree with what the state's action just did;
 - the facts of a T-joint taken straight on walk the report's steps;
-- each goal the PAB cannot run is refused at once with its reason.
+- each goal the PAB cannot run is refused at once with its reason;
+- a turn re-sent after a cancel resumes at the step that continues it from
+  what the robot senses (signatures read in the twin: bench/junction_turn_resume
+  --trace), exhaustively never restarts a turn in a corner nor resumes one
+  toward the other side, and what it cannot resume from is refused with why.
 """
 import collections
 import itertools
@@ -19,11 +23,16 @@ from pirate.sequencer.pabs import junction as jn
 from pirate.sequencer.pabs.base import END, PabFailed
 
 BOOK = GuardBook(*load_files())
-ALL_FACTS = [jn.Facts(*values) for values in itertools.product((True, False), repeat=5)]
+ALL_FACTS = [jn.Facts(*values) for values in itertools.product((True, False), repeat=len(jn.Facts._fields))]
+
+def in_a_corner(f):
+    return f.front_round or f.middle_round or f.middle_swung or f.rear_round
+
 
 #: What each state's action guarantees about the facts read right after it.
 POSTCONDITION = {
-    jn.CHANGE_MODES: lambda f: True,
+    # straight on: always; a turn: from its start (what check() always accepted); the resumes below
+    jn.CHANGE_MODES: lambda f: not f.turn or (f.front and f.rear and f.straight and not in_a_corner(f)),
     jn.SEARCHING: lambda f: f.found and not f.turn,  # else it raised JunctionMissing
     jn.STOPPING: lambda f: f.found and not f.turn,
     jn.LIFTING_FRONT: lambda f: f.turn and not f.found,
@@ -210,3 +219,110 @@ def test_straight_on_from_a_sideways_clamp_is_refused(orientation):
 def test_straight_on_through_a_t_joint_clamped_straight_is_accepted(mm):
     angles = CLAMPED if mm == 90 else dict(CLAMPED, bend_i=-1.3, bend_ii=0.7, bend_iii=0.7, bend_iv=-1.3)
     assert check(codes.T_JOINT, codes.STRAIGHT, distance=800.0, robot=view(angles=angles), mm=mm) is None
+
+
+# --- a turn re-sent after a cancel ----------------------------------------------
+#: What the robot sensed 2 s after a MITRE_BEND LEFT was cancelled in the
+#: twin (bend_left_90, python3 bench/junction_turn_resume --cancel-at ...):
+#: cancelled in -> (angles rad, springs mNm, roll rad, the step that continues it).
+CANCELLED = {
+    'unclamping front partial': (dict(bend_i=-0.64, bend_ii=-0.05, bend_iii=0.59, bend_iv=-0.71),
+                                 dict(bend_i=-76, bend_ii=-6, bend_iii=60, bend_iv=234), 3.11, jn.STEERING_FRONT),
+    'steering, in the straight pipe': (dict(bend_i=-0.90, bend_ii=0.45, bend_iii=0.40, bend_iv=-0.79),
+                                       dict(bend_i=-56, bend_ii=-115, bend_iii=3, bend_iv=236), 3.12,
+                                       jn.STEERING_FRONT),
+    'steering, the front poking round': (dict(bend_i=0.79, bend_ii=0.42, bend_iii=0.41, bend_iv=-0.83),
+                                         dict(bend_i=0, bend_ii=-95, bend_iii=1, bend_iv=239), 3.12,
+                                         jn.STEERING_FRONT),
+    'clamping front at the corner': (dict(bend_i=0.02, bend_ii=1.56, bend_iii=0.40, bend_iv=-0.80),
+                                     dict(bend_i=-85, bend_ii=-187, bend_iii=-1, bend_iv=260), 3.16,
+                                     jn.CLAMPING_AT_CORNER),
+    'swinging, just started': (dict(bend_i=-0.47, bend_ii=1.75, bend_iii=0.48, bend_iv=-0.80),
+                               dict(bend_i=155, bend_ii=-169, bend_iii=41, bend_iv=255), 3.16, jn.CLAMPING_AT_CORNER),
+    'swinging, reads Idle Clamped': (dict(bend_i=-0.65, bend_ii=1.10, bend_iii=1.21, bend_iv=-0.79),
+                                     dict(bend_i=204, bend_ii=-118, bend_iii=187, bend_iv=258), 3.13,
+                                     jn.SWINGING_MIDDLE),
+    'swung': (dict(bend_i=-0.68, bend_ii=0.64, bend_iii=1.66, bend_iv=-0.76),
+              dict(bend_i=225, bend_ii=-111, bend_iii=146, bend_iv=288), 3.12, jn.BRINGING_REAR),
+    'bringing the rear, Bend III in the corner': (dict(bend_i=-0.69, bend_ii=0.39, bend_iii=1.60, bend_iv=-0.40),
+                                                  dict(bend_i=247, bend_ii=-3, bend_iii=-1, bend_iv=182), 3.13,
+                                                  jn.BRINGING_REAR),
+    'bringing the rear, Bend IV round': (dict(bend_i=-0.69, bend_ii=0.38, bend_iii=0.16, bend_iv=0.61),
+                                         dict(bend_i=258, bend_ii=-8, bend_iii=-216, bend_iv=-89), 3.16,
+                                         jn.BRINGING_REAR),
+    'clamping rear, Bend IV still round': (dict(bend_i=-0.68, bend_ii=0.43, bend_iii=-0.10, bend_iv=0.23),
+                                           dict(bend_i=241, bend_ii=-38, bend_iii=-34, bend_iv=-35), 3.11,
+                                           jn.BRINGING_REAR),
+}
+#: Sensed like a robot clamping its rear in a straight pipe: refused (Clamp Sideways first).
+REAR_CLAMPING_PAST_THE_CORNER = (dict(bend_i=-0.68, bend_ii=0.38, bend_iii=0.35, bend_iv=-0.56),
+                                 dict(bend_i=256, bend_ii=-5, bend_iii=-198, bend_iv=-66), 3.12)
+
+
+def cancelled(angles, springs, roll):
+    return view(roll, dict(CLAMPED, front_tilt=0.17, **angles), springs)
+
+
+def first_step(name, option, robot, mm=90):
+    goal = Goal(name, option, 800.0, 0.0, mm)
+    guards = BOOK.for_diameter(mm)
+    return jn._first_step(PABS[name][1].for_goal(goal).sensed_facts(guards, robot))
+
+
+@pytest.mark.parametrize('where', sorted(CANCELLED))
+def test_a_turn_re_sent_after_a_cancel_resumes_at_the_step_that_continues_it(where):
+    angles, springs, roll, step = CANCELLED[where]
+    robot = cancelled(angles, springs, roll)
+    assert check(codes.MITRE_BEND, codes.LEFT, distance=800.0, robot=robot) is None
+    assert first_step(codes.MITRE_BEND, codes.LEFT, robot) == step
+    assert first_step(codes.T_JOINT, codes.LEFT, robot) == step        # the same steps: the kind is not sensed
+
+
+@pytest.mark.parametrize('where', sorted(CANCELLED))
+def test_a_turn_cancelled_toward_one_side_is_not_resumed_toward_the_other(where):
+    angles, springs, roll, _ = CANCELLED[where]
+    reason = check(codes.MITRE_BEND, codes.RIGHT, distance=800.0, robot=cancelled(angles, springs, roll))
+    assert reason is not None and ('toward the LEFT' in reason or 'Clamp Sideways RIGHT first' in reason), reason
+
+
+@pytest.mark.parametrize('where', sorted(w for w in CANCELLED if CANCELLED[w][3] != jn.STEERING_FRONT))
+def test_half_round_a_corner_a_turn_is_refused_toward_the_other_side_and_straight_on(where):
+    angles, springs, roll, _ = CANCELLED[where]
+    robot = cancelled(angles, springs, roll)
+    assert 'half round a corner toward the LEFT' in check(codes.MITRE_BEND, codes.RIGHT, 800.0, robot=robot)
+    reason = check(codes.T_JOINT, codes.STRAIGHT, 800.0, robot=robot)
+    assert 'starts clamped straight' in reason and 'half round a corner toward the LEFT' in reason
+
+
+def test_the_rear_clamping_as_in_a_straight_pipe_asks_for_clamp_sideways_first():
+    reason = check(codes.MITRE_BEND, codes.LEFT, 800.0, robot=cancelled(*REAR_CLAMPING_PAST_THE_CORNER))
+    assert 'Clamp Sideways LEFT first' in reason and 'cannot sense which' in reason
+
+
+def test_round_a_corner_with_neither_part_clamped_is_refused_with_where_it_is():
+    angles, springs, roll, _ = CANCELLED['swinging, reads Idle Clamped']
+    loose = dict(springs, bend_i=0, bend_iv=0)
+    reason = check(codes.MITRE_BEND, codes.LEFT, 800.0, robot=cancelled(angles, loose, roll))
+    assert 'cannot finish the turn from here' in reason and 'Bend III 1.21 rad' in reason
+
+
+def test_a_robot_in_a_corner_never_starts_a_turn_from_its_beginning():
+    for facts in ALL_FACTS:
+        if in_a_corner(facts):
+            assert jn._first_step(facts) != jn.LIFTING_FRONT, facts
+
+
+def test_a_turn_never_resumes_with_the_roll_away_from_its_side():
+    for facts in ALL_FACTS:
+        if facts.turn and not facts.toward and not facts.straight:
+            assert jn._first_step(facts) is None, facts
+
+
+def test_a_resumed_step_needs_its_clamped_part():
+    """Swinging pushes off the clamped rear, bringing pulls with the clamped front."""
+    for facts in ALL_FACTS:
+        step = jn._first_step(facts)
+        if step in (jn.STEERING_FRONT, jn.CLAMPING_AT_CORNER, jn.SWINGING_MIDDLE):
+            assert facts.rear, facts
+        if step == jn.BRINGING_REAR:
+            assert facts.front, facts

@@ -15,12 +15,20 @@ or toward the side a T-joint entered through its branch turns to
 front in, brings the rear through and ends with every module in the new
 pipe, clamped on its side there (ground truth); in a straight pipe the
 same goal finds no opening and aborts with junction_missing.
+
+Cancelled at a seeded random instant of its corner part (from clamping the
+front at the corner to bringing the rear through) and re-sent, a MITRE_BEND
+LEFT finishes the turn from where the robot is and ends the same way.
 """
 import math
+import random
+import threading
+import time
 
 import pytest
 
 from pirate.sequencer.pabs import codes
+from pirate.sequencer.pabs import junction as jn
 from pirate.sim.harness import SimHarness
 from pirate.world import network
 from test_sequencer_sim import SAFE_INDICES, STRAIGHT, run_bounded
@@ -126,3 +134,45 @@ def test_no_opening_toward_the_turn_aborts_with_junction_missing():
         assert 'no opening toward the left within 100 mm' in outcome.message
         sent = h.wires['setpoint'].sent[-1][1]
         assert all(sent[i] == 0 for i in SAFE_INDICES.values()), sent        # the safe hold
+
+
+def wait_for_state(h, state, wall_s=60.0):
+    """Wait (wall-bounded) until the running PAB reports ``state``."""
+    wall_end = time.monotonic() + wall_s
+    while h.server.pab_state != state and time.monotonic() < wall_end:
+        time.sleep(0.005)
+    assert h.server.pab_state == state, h.server.pab_state
+
+
+def test_a_turn_cancelled_half_round_the_corner_and_re_sent_finishes_it():
+    """The corner part lasts about 15 robot s in the twin (29-44 s of a 53 s turn)."""
+    seed = int(time.time() * 1000) % 100000
+    cancel_after = random.Random(seed).uniform(0.0, 15.0)
+    option, roll, sign = SIDES['left']
+    world = network.load(network.world_path('bend_left_90'))
+    with SimHarness(speedup=TURN_SPEEDUP, world=world.name, orientation=roll) as h:
+        clamped_sideways(h, option)
+        goal = h.goal(codes.MITRE_BEND, option=option, distance=800.0)
+        assert h.server.reserve(goal) is None
+        worker = threading.Thread(target=h.server.run, args=(goal,), daemon=True)
+        worker.start()
+        wait_for_state(h, jn.CLAMPING_AT_CORNER)
+        robot_wait(h, cancel_after)
+        where = h.server.pab_state
+        h.server.cancel()
+        worker.join(30.0)
+        assert not worker.is_alive()
+        robot_wait(h, 2.0)
+        reason, outcome = run_bounded(h, goal, 120.0)
+        what = 'seed %d: cancelled %.1f s into the corner, in %s' % (seed, cancel_after, where)
+        if reason and 'Clamp Sideways LEFT first' in reason:      # cancelled as the rear clamped past the corner
+            clamped_sideways(h, option)
+        else:
+            assert reason is None and outcome.status == 'succeeded', (what, reason, outcome and outcome.message)
+        robot_wait(h, 2.0)
+        truth = h.ground_truth()
+        across = {body: sign * truth['poses'][body][0][1] for body in JOINT_BODIES}
+        assert all(y > world.pieces[1].diameter / 2 for y in across.values()), (what, across)
+        assert APEX_WHEELS <= set(truth['wheel_contacts']), what
+        assert abs(math.remainder(truth['roll'] - roll, 2 * math.pi)) <= 0.05, (what, truth['roll'])
+        assert h.server.status() == 'Idle Clamped', what
