@@ -13,8 +13,13 @@ The same goal again, toward the second junction, is cancelled at a random
 instant of sim time within ``~cancel_within`` (about its duration; seed
 printed): PREEMPTED with the safe hold on the wire (or SUCCEEDED when the
 draw came after it ended); then, with ``~home_after_cancel``, Home leaves
-the robot Idle Unclamped from wherever the cancel left it. Built on
-seq_experiment's helpers.
+the robot Idle Unclamped from wherever the cancel left it; with
+``~resend_after_cancel`` (a turn), the same goal re-sent finishes the turn
+from where the robot is: SUCCEEDED, Idle Clamped at ``~target`` (refused
+asking for ``~clamp`` first when cancelled as the rear clamped past the
+corner: then that clamp ends it). Cancelled while driving into the new
+pipe or after, the turn is over and the robot senses nothing left to
+finish: not re-sent. Built on seq_experiment's helpers.
 """
 import math
 
@@ -29,6 +34,8 @@ CLAMP = {'name': PirateGoal.CLAMP_STRAIGHT}
 T_JOINT = {'name': PirateGoal.T_JOINT, 'option': PirateGoal.STRAIGHT}
 HOME = {'name': PirateGoal.HOME}
 MITRE_BEND_DOWN = {'name': PirateGoal.MITRE_BEND, 'option': PirateGoal.DOWN}
+#: The steps of a turn after which it is over (pirate.sequencer.pabs.junction): nothing left to resume.
+ENDED = ('driving into the new pipe', 'straightening')
 
 
 class PabJunctionTest(SequencerTest):
@@ -57,8 +64,26 @@ class PabJunctionTest(SequencerTest):
         self.assertLessEqual(abs(math.remainder(self.state.orientation - target, 2 * math.pi)), 0.05,
                              self.state.orientation)
         seed = self._cancel_at_random(junction, 'pab_junction: %s' % junction)
+        if rospy.get_param('~resend_after_cancel', False):
+            self._resend(junction, rospy.get_param('~clamp', CLAMP), target, seed)
         if rospy.get_param('~home_after_cancel', True):
             self.assertEqual(self._run(HOME).server_state, 'Idle Unclamped', 'seed %d' % seed)
+
+    def _resend(self, junction, clamp, target, seed):
+        """The cancelled turn re-sent finishes it (or the clamp it asks for first does)."""
+        text = self.cancelled_text
+        if 'cancelled during' not in text or any(step in text for step in ENDED):
+            rospy.loginfo('pab_junction: not re-sent, the turn had ended (%s)', text)
+            return
+        self._send(junction)
+        state, result, why = self._finish()
+        if state == GoalStatus.REJECTED and 'Clamp Sideways' in why:
+            result = self._run(clamp)
+        else:
+            self.assertEqual(state, GoalStatus.SUCCEEDED, 'seed %d: %s; re-sent: %s' % (seed, text, why))
+        self.assertEqual(result.server_state, 'Idle Clamped', 'seed %d: %s' % (seed, text))
+        self.assertLessEqual(abs(math.remainder(self.state.orientation - target, 2 * math.pi)), 0.05,
+                             'seed %d: roll %.3f' % (seed, self.state.orientation))
 
 
 if __name__ == '__main__':

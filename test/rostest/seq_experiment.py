@@ -167,7 +167,7 @@ class SequencerTest(unittest.TestCase):
         (default ``~cancel_within``) s (seed logged), and check what a cancel
         must leave: preempted with the trace ending preempted and the safe hold
         on the wire (or it had already succeeded). Returns the seed, for the
-        caller's messages."""
+        caller's messages; the goal's final text is kept in ``self.cancelled_text``."""
         seed = int(time.time() * 1000) % 100000
         within_s = float(rospy.get_param('~cancel_within')) if within_s is None else within_s
         cancel_after = random.Random(seed).uniform(0.2, within_s)
@@ -177,6 +177,7 @@ class SequencerTest(unittest.TestCase):
         cancelled_at = time.monotonic()
         self.client.cancel_goal()
         state, result, text = self._finish()
+        self.cancelled_text = text
         self.assertIn(state, (GoalStatus.PREEMPTED, GoalStatus.SUCCEEDED), 'seed %d: %s' % (seed, text))
         if state == GoalStatus.PREEMPTED:
             self._assert_trace(result, outcome_last='preempted')

@@ -46,6 +46,20 @@ guard is in the ``turn`` row of config/guards_<mm>.yaml: measured in the
 twin in 90 mm, derived from them and the geometry in 110 mm (checked in
 the twin).
 
+A turn cancelled on the way and re-sent (same direction; the kind is not
+sensed, the steps are the same) goes on from where the robot senses it is:
+from CHANGE_MODES the table's resume guards read the sensed corner facts
+(:data:`Facts`; ``resume_*`` keys of the ``turn`` row, measured with
+bench/junction_turn_resume --trace) and enter the step that continues it,
+after pressing the clamped parts again (the safe hold leaves them held by
+their worms only). check() accepts exactly the robots the table has a
+first step for, and says what it senses otherwise: a robot half round a
+corner is refused a turn toward the other side and straight on; the front
+clamped and the rear partly, no bend round a corner, is what clamping the
+rear past the corner and a part-clamped robot in a straight pipe both look
+like: Clamp Sideways first. Cancelled while driving in, nothing sensed says
+the turn is not done: a re-sent goal starts a new one.
+
 Which (kind, direction) the PAB takes is :data:`TAKEN`: straight on
 through a T-joint, a mitre bend or a T-joint left or right (90 and 110
 mm). Turns up or down are refused with the reason.
@@ -250,7 +264,7 @@ class TakeJunction(Pab):
         """Accept a robot the table can start (or, for a turn, resume) from;
         else the reason, saying where in a corner the robot senses it is."""
         facts = self.sensed_facts(guards, view)
-        corner = _corner_text(guards, view, facts)
+        corner = _corner_text(view, facts)
         if self.turning:
             if _first_step(facts) is not None:
                 return None
@@ -282,8 +296,8 @@ class TakeJunction(Pab):
                        clamp_state.idle_state(clamp_state.sensed(guards, view))))
         if facts.toward and facts.front and not facts.rear:
             return ('%s; %s first (a turn cancelled while clamping its rear past the corner reads the same: '
-                    '%s then ends it there, 150 mm short of its end; the robot cannot sense which)'
-                    % (self._start_text(view, guards), clamp, clamp))
+                    '%s then ends it there, %.0f mm short of its end; the robot cannot sense which)'
+                    % (self._start_text(view, guards), clamp, clamp, float(guards.row('turn')['drive_in_mm'])))
         return '%s; %s first' % (self._start_text(view, guards), clamp)
 
     def sensed_facts(self, guards, view, found=False):
@@ -426,7 +440,7 @@ def _corner_facts(guards, view):
                 rear_round=angles['bend_iv'] >= float(row['resume_rear_rad']))
 
 
-def _corner_text(guards, view, facts):
+def _corner_text(view, facts):
     """What says the robot is round a corner ('' when nothing does), for a refusal."""
     angles, said = view.angles, []
     if facts.front_round:
