@@ -81,6 +81,7 @@ class PabJunctionTest(SequencerTest):
             result = self._run(clamp)
         else:
             self.assertEqual(state, GoalStatus.SUCCEEDED, 'seed %d: %s; re-sent: %s' % (seed, text, why))
+        rospy.loginfo('pab_junction: %s, re-sent: %s', text, result.message)
         self.assertEqual(result.server_state, 'Idle Clamped', 'seed %d: %s' % (seed, text))
         self.assertLessEqual(abs(math.remainder(self.state.orientation - target, 2 * math.pi)), 0.05,
                              'seed %d: roll %.3f' % (seed, self.state.orientation))
