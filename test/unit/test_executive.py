@@ -11,6 +11,7 @@ import pytest
 import yaml
 
 from pirate import paths
+from pirate.sequencer.junctions import is_turn
 from pirate.supervisory import executive as ex
 from pirate.supervisory import planner
 from pirate.supervisory.localiser import Localiser, sensed_at_m
@@ -21,6 +22,11 @@ with open(os.path.join(paths.CONFIG_DIR, 'supervisory.yaml')) as _f:
 WAIT_S = 10.0
 MAP = network.build({'name': 'test', 'diameter_mm': 90, 'pieces': [
     {'type': 'straight', 'length_mm': 2000}, {'type': 'mitre', 'turn': 'left'},
+    {'type': 'straight', 'length_mm': 2000}, {'type': 'cap'}],
+    'points': [{'name': 'pit', 'at_mm': 300}, {'name': 'target', 'at_mm': 3000}]})
+#: The same with a T-joint gone straight through (its side open upward) instead of the bend.
+TEE_MAP = network.build({'name': 'test_tee', 'diameter_mm': 90, 'pieces': [
+    {'type': 'straight', 'length_mm': 2000}, {'type': 'tee', 'enter': 'run', 'side': 'up'},
     {'type': 'straight', 'length_mm': 2000}, {'type': 'cap'}],
     'points': [{'name': 'pit', 'at_mm': 300}, {'name': 'target', 'at_mm': 3000}]})
 
@@ -69,6 +75,9 @@ class FakeRobot(object):
         if step.junction is not None:
             sign = 1 if step.distance_mm > 0 else -1
             edge = sensed_at_m(step.junction, sign, SETTINGS['robot']) + self.shift_m
+            if is_turn(step.junction.direction) and sign * (self.true_m - edge) > 0:
+                self.true_m = step.end_m + self.shift_m     # a turn re-sent half round: it goes on, senses nothing
+                return ex.Report('succeeded', 'resumed', self.odometry(), None, False)
             if abs(edge - self.true_m) * 1000 > abs(step.distance_mm):
                 return ex.Report('aborted', 'no junction within %.0f mm' % abs(step.distance_mm),
                                  self.odometry() + step.distance_mm, None, True)
@@ -79,10 +88,10 @@ class FakeRobot(object):
         return ex.Report('succeeded', 'done', self.odometry(), found, False)
 
 
-def mission(robot, route=('pit', 'target'), **kw):
-    route_plan = planner.plan(MAP, list(route), SETTINGS, 5000.0)
+def mission(robot, route=('pit', 'target'), world=MAP, **kw):
+    route_plan = planner.plan(world, list(route), SETTINGS, 5000.0)
     progress = kw.pop('progress', None)
-    return ex.Executive(route_plan, robot, Localiser(MAP.points[route[0]], SETTINGS), SETTINGS,
+    return ex.Executive(route_plan, robot, Localiser(world.points[route[0]], SETTINGS), SETTINGS,
                         progress=progress, out=lambda line: None, **kw)
 
 
@@ -195,11 +204,11 @@ class Waiter(object):
             self.seen.clear()
 
 
-def paused_mission(robot, resumes=True):
+def paused_mission(robot, resumes=True, world=MAP):
     """Run a mission, pause it while ``robot.hold_step`` runs and, if the
     mission waits for it, resume: (executive, outcome)."""
     waiter = Waiter()
-    run = mission(robot, progress=waiter)
+    run = mission(robot, progress=waiter, world=world)
     thread, result = _in_thread(run)
     assert robot.entered.wait(WAIT_S)
     run.pause()
@@ -225,49 +234,94 @@ def test_pause_holds_and_resume_reclamps_only_if_unclamped_then_drives_only_what
 
 
 @pytest.mark.parametrize('moved_mm, goes_on', [(30.0, True), (200.0, False)])
-def test_a_junction_paused_after_sensing_runs_again_only_while_its_front_v_has_not_passed_it(moved_mm, goes_on):
-    """Paused after the junction PAB sensed its junction: re-anchored there;
-    within the junction's length (90 mm) the step runs again from where the
-    robot is; beyond it the crossing cannot be resumed: the mission stops,
-    nothing more is sent."""
-    robot = FakeRobot(0.3, hold_step='MITRE_BEND')
+def test_a_crossing_paused_after_sensing_runs_again_only_while_its_front_v_has_not_passed_it(moved_mm, goes_on):
+    """Straight on through a T-joint, paused after the PAB sensed it:
+    re-anchored there; within the junction's length (90 mm) the step runs
+    again from where the robot is; beyond it the crossing cannot be resumed:
+    the mission stops, nothing more is sent."""
+    robot = FakeRobot(0.3, hold_step='T_JOINT')
     robot.sensed_then_moved_mm = moved_mm
-    run, outcome = paused_mission(robot, resumes=goes_on)
-    assert run.localiser.fixes[0].junction == 'mitre_1'
+    run, outcome = paused_mission(robot, resumes=goes_on, world=TEE_MAP)
+    assert run.localiser.fixes[0].junction == 'tee_1'
     if goes_on:
         assert outcome.status == 'succeeded', outcome.message
-        assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND', 'CLAMP_SIDEWAYS',
-                                               'MITRE_BEND', 'DRIVE', 'HOME']
+        assert [g[0] for g in robot.goals] == ['CLAMP_STRAIGHT', 'DRIVE', 'T_JOINT', 'CLAMP_STRAIGHT',
+                                               'T_JOINT', 'DRIVE', 'HOME']
     else:
         assert outcome.status == 'aborted' and 'cannot be resumed' in outcome.message
-        assert 'mitre_1' in outcome.message and '200 mm after sensing' in outcome.message
-        assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND']
+        assert 'tee_1' in outcome.message and '200 mm after sensing' in outcome.message
+        assert [g[0] for g in robot.goals] == ['CLAMP_STRAIGHT', 'DRIVE', 'T_JOINT']
 
 
-@pytest.mark.parametrize('moved_mm, goes_on', [(30.0, True), (200.0, False)])
-def test_a_junction_aborted_after_sensing_is_retried_only_while_its_front_v_has_not_passed_it(moved_mm, goes_on):
-    """The retry policy follows the pause's rule: a junction PAB that aborted
-    after its front V had passed the junction cannot sense it again; the
-    mission stops with that reason instead of reporting a missing junction."""
-    robot = FakeRobot(0.3)
-    junction_run = robot.run
+def aborts_once_after_sensing(robot, pab, moved_mm, then=()):
+    """``robot``'s first ``pab`` goal aborts ``moved_mm`` past where it sensed
+    its junction; the next ones end with the statuses ``then`` (rejected:
+    refused at its start), then run as usual."""
+    take, later = robot.run, list(then)
 
-    def aborts_once(step):
-        if step.pab == 'MITRE_BEND' and not robot.aborted:
+    def run(step):
+        if step.pab == pab and not robot.aborted:
             robot.aborted = True
             robot.true_m = sensed_at_m(step.junction, 1, SETTINGS['robot']) + moved_mm / 1000.0
             robot.goals.append((step.pab, step.option, round(step.distance_mm)))
             return ex.Report('aborted', 'no robot state', robot.odometry(), robot.odometry() - moved_mm, False)
-        return junction_run(step)
-    robot.aborted, robot.run = False, aborts_once
-    outcome = mission(robot).run()
+        if step.pab == pab and later:
+            robot.goals.append((step.pab, step.option, round(step.distance_mm)))
+            return ex.Report(later.pop(0), 'scripted', robot.odometry(), None, False)
+        return take(step)
+    robot.aborted, robot.run = False, run
+
+
+@pytest.mark.parametrize('moved_mm, goes_on', [(30.0, True), (200.0, False)])
+def test_a_crossing_aborted_after_sensing_is_retried_only_while_its_front_v_has_not_passed_it(moved_mm, goes_on):
+    """The retry policy follows the pause's rule: a crossing that aborted
+    after its front V had passed the junction cannot sense it again; the
+    mission stops with that reason instead of reporting a missing junction."""
+    robot = FakeRobot(0.3)
+    aborts_once_after_sensing(robot, 'T_JOINT', moved_mm)
+    outcome = mission(robot, world=TEE_MAP).run()
     kinds = [g[0] for g in robot.goals]
     if goes_on:
         assert outcome.status == 'succeeded', outcome.message
-        assert kinds == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND', 'CLAMP_SIDEWAYS', 'MITRE_BEND', 'DRIVE', 'HOME']
+        assert kinds == ['CLAMP_STRAIGHT', 'DRIVE', 'T_JOINT', 'CLAMP_STRAIGHT', 'T_JOINT', 'DRIVE', 'HOME']
     else:
         assert outcome.status == 'aborted' and 'abort in step 3' in outcome.message
-        assert 'cannot be resumed' in outcome.message and kinds == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND']
+        assert 'cannot be resumed' in outcome.message and kinds == ['CLAMP_STRAIGHT', 'DRIVE', 'T_JOINT']
+
+
+@pytest.mark.parametrize('moved_mm', [30.0, 200.0])
+def test_a_turn_paused_after_its_front_turned_is_sent_again_without_a_reclamp_and_goes_on(moved_mm):
+    """Half round the corner a Clamp Sideways would undo the turn; the turn's
+    PAB goes on from where the robot senses it is and, not steering again,
+    senses no junction: that is not a missing junction. The mission ends at
+    its target, the bend anchored once."""
+    robot = FakeRobot(0.3, hold_step='MITRE_BEND')
+    robot.sensed_then_moved_mm = moved_mm
+    run, outcome = paused_mission(robot)
+    assert outcome.status == 'succeeded', outcome.message
+    assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND', 'MITRE_BEND', 'DRIVE', 'HOME']
+    assert [fix.junction for fix in run.localiser.fixes] == ['mitre_1']
+    assert abs(robot.true_m - 3.0) < 1e-6 and abs(run.localiser.along_m - 3.0) < 1e-6
+    assert any('sent again as it is' in line for line in outcome.log)
+
+
+def test_a_turn_aborted_after_its_front_turned_is_retried_without_a_reclamp():
+    robot = FakeRobot(0.3)
+    aborts_once_after_sensing(robot, 'MITRE_BEND', 200.0)
+    outcome = mission(robot).run()
+    assert outcome.status == 'succeeded', outcome.message
+    assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND', 'MITRE_BEND', 'DRIVE', 'HOME']
+
+
+def test_a_begun_turn_its_pab_refuses_to_go_on_with_is_re_clamped_and_sent_again():
+    """The PAB refuses what it cannot continue from (e.g. "Clamp Sideways
+    LEFT first"): the retry's re-clamp follows, as for any junction PAB."""
+    robot = FakeRobot(0.3)
+    aborts_once_after_sensing(robot, 'MITRE_BEND', 200.0, then=['rejected'])
+    outcome = mission(robot, policy={'MITRE_BEND': {'retries': 2}}).run()
+    assert outcome.status == 'succeeded', outcome.message
+    assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND', 'MITRE_BEND', 'CLAMP_SIDEWAYS',
+                                           'MITRE_BEND', 'DRIVE', 'HOME']
 
 
 def test_confirm_level_waits_for_the_operator_before_each_pab():

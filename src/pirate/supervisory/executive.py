@@ -19,9 +19,13 @@ What a gas-network inspector expects of it (issue 11):
   robot in its safe hold) and waits; resume re-clamps if the robot is no
   longer clamped and runs the same step again, a Drive only for what is
   left of it; a junction PAB paused (or aborted) after it sensed its
-  junction is re-anchored there, and run again only if its front V has not
-  passed the junction (else the mission stops, the robot held: a crossing
-  cannot be resumed yet). Cancel always ends the mission.
+  junction is re-anchored there. Straight on through a T-joint it runs
+  again only if its front V has not passed the junction (else the mission
+  stops, the robot held: a crossing cannot be resumed). A turn whose front
+  had turned into the new pipe is re-sent as it is, without a re-clamp: the
+  junction PAB goes on from where the robot senses it is (half round the
+  corner a Clamp Sideways would undo the turn); if the PAB refuses, the
+  retry's re-clamp follows. Cancel always ends the mission.
 
 Pure: the robot is an object with ``run(step) -> Report`` (blocking until
 the goal ends), ``cancel()`` (any thread) and ``clamped()`` (the server's
@@ -180,10 +184,10 @@ class Executive(object):
 
     def _run_step(self, step):
         retries_left = self._retries(step)
-        resuming = False
+        resuming = turn_begun = False
         while True:
             self._await_go(step)
-            if resuming and step.holds is not None and not self.robot.clamped():
+            if resuming and not turn_begun and step.holds is not None and not self.robot.clamped():
                 self._reclamp(step, 'resume')
             todo = self._remaining(step)
             if todo is None:
@@ -192,7 +196,8 @@ class Executive(object):
                 return None
             report = self._goal(todo)
             if report.status == 'succeeded':
-                self._arrived(step, report)
+                if not (turn_begun and report.junction_odometry_mm is None):   # a resumed turn senses no junction
+                    self._arrived(step, report)
                 return self._after_turn(step, report)
             resuming = False
             if self._cancelled:
@@ -200,7 +205,7 @@ class Executive(object):
                            % (self.step_index + 1, step.pab))
             if report.status == 'preempted' and self._paused:
                 resuming = True
-                self._check_rerun(step, report, 'pause')
+                turn_begun = self._check_rerun(step, report, 'pause') or turn_begun
                 continue
             if report.status == 'preempted':
                 raise Stop('cancelled', 'step %d (%s) was cancelled outside the mission: %s'
@@ -211,10 +216,11 @@ class Executive(object):
                 raise Stop('aborted', 'step %d (%s) %s: %s' % (self.step_index + 1, step.pab, report.status,
                                                               report.message))
             retries_left -= 1
-            self._check_rerun(step, report, 'abort')
-            self._say('step %d (%s) aborted: %s; retrying (%d left)'
-                      % (self.step_index + 1, step.pab, report.message, retries_left))
-            self._reclamp(step, 'retry')
+            turn_begun = self._check_rerun(step, report, 'abort') or turn_begun
+            self._say('step %d (%s) %s: %s; retrying (%d left)'
+                      % (self.step_index + 1, step.pab, report.status, report.message, retries_left))
+            if report.status == 'rejected' or not turn_begun:
+                self._reclamp(step, 'retry')
 
     @staticmethod
     def _reclamp_may_help(step):
@@ -226,26 +232,36 @@ class Executive(object):
         return step.junction is not None and step.holds is not None
 
     def _check_rerun(self, step, report, why):
-        """Before ``step`` runs again after a pause or an abort (``why``).
+        """Before ``step`` runs again after a pause or an abort (``why``):
+        True when it is a turn that had begun (its front had turned into the
+        new pipe), to be re-sent as it is.
+
         A junction PAB that had sensed its junction re-anchors the estimate
-        there; run again, it senses the junction again only while its front V
-        has not passed it (moved less than the junction's length since).
-        Beyond that its crossing cannot be resumed (the junction PAB has no
-        entry in the middle of a crossing, and a clamped robot driven on with
-        a V over the hole stalled in the twin while its odometry counted on):
+        there. A turn's PAB goes on from where the robot senses it is
+        (pirate.sequencer.pabs.junction, resuming a turn). Straight on, run
+        again, it senses the junction again only while its front V has not
+        passed it (moved less than the junction's length since); beyond that
+        the crossing cannot be resumed (the junction PAB has no entry in the
+        middle of a crossing, and a clamped robot driven on with a V over the
+        hole stalled in the twin while its odometry counted on):
         :class:`Stop`, the robot held where it is."""
         if step.junction is None or report.junction_odometry_mm is None:
-            return
+            return False
         self._arrived(step, report)
+        if is_turn(step.junction.direction):
+            self._say('  %s: the turn had begun (the front turned into the new pipe); step %d is sent again as it '
+                      'is and goes on from where the robot is' % (step.junction.name, self.step_index + 1))
+            return True
         moved_mm = abs(report.odometry_mm - report.junction_odometry_mm)
         length_mm = (step.junction.exit_m - step.junction.entry_m) * 1000.0
         if moved_mm > length_mm:
             raise Stop('aborted', '%s in step %d (%s %s) %.0f mm after sensing %s, more than its %.0f mm: the '
-                       'crossing had begun and cannot be resumed (not built); the robot is held where it is'
+                       'crossing had begun and cannot be resumed; the robot is held where it is'
                        % (why, self.step_index + 1, step.pab, step.option, moved_mm, step.junction.name,
                           length_mm))
         self._say('  %s was sensed %.0f mm before the %s: step %d runs again from there'
                   % (step.junction.name, moved_mm, why, self.step_index + 1))
+        return False
 
     def _await_go(self, step):
         """Wait while paused or unconfirmed; :class:`Stop` on cancel."""
