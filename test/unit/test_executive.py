@@ -157,9 +157,20 @@ def test_a_junction_pab_refused_at_its_start_is_retried_after_reclamping():
     assert outcome.status == 'succeeded', outcome.message
     assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND', 'CLAMP_SIDEWAYS',
                                            'MITRE_BEND', 'DRIVE', 'HOME']
-    robot = FakeRobot(0.3, fail={'MITRE_BEND': ['rejected'] * 3})        # refused again: the mission ends
+    robot = FakeRobot(0.3, fail={'MITRE_BEND': ['rejected'] * 5})        # refused again: the mission ends
+    outcome = mission(robot).run()                                      # after the free re-clamp and 1 retry
+    assert outcome.status == 'aborted' and [g[0] for g in robot.goals].count('MITRE_BEND') == 3
+
+
+def test_a_refusal_at_the_start_cured_by_a_reclamp_does_not_spend_the_steps_retry():
+    """The drive up to a bend routinely rolls the robot out of its clamp's
+    region (the twin: 3.05 rad for 3.14): that re-clamp must leave the one
+    retry of the policy for an abort later in the turn."""
+    robot = FakeRobot(0.3, fail={'MITRE_BEND': ['rejected', 'aborted']})
     outcome = mission(robot).run()
-    assert outcome.status == 'aborted' and [g[0] for g in robot.goals].count('MITRE_BEND') == 2
+    assert outcome.status == 'succeeded', outcome.message
+    assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND', 'CLAMP_SIDEWAYS', 'MITRE_BEND',
+                                           'CLAMP_SIDEWAYS', 'MITRE_BEND', 'DRIVE', 'HOME']
 
 
 def test_a_cancel_from_outside_the_mission_is_not_retried():

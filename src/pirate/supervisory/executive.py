@@ -7,7 +7,8 @@ What a gas-network inspector expects of it (issue 11):
   re-establishing the clamp the step starts from first ("re-clamp and retry
   a bend"); then the mission stops safe. A goal cancelled by the operator
   is never retried; a refused goal is not either (retrying cannot help),
-  except a junction PAB refused at its start, which a re-clamp may cure;
+  except a junction PAB refused at its start, which a re-clamp may cure
+  (the first such re-clamp of a step spends no retry: :class:`Tries`);
 - **localisation**: every report moves the estimate along the map; every
   junction a PAB finds re-anchors it, and a junction where the map has none,
   or none where it has one, stops the mission (pirate.supervisory.localiser);
@@ -78,6 +79,27 @@ def between_missions(text, next_level):
     if len(words) == 2 and words[0] == 'level' and words[1] in LEVELS:
         return True, 'autonomy level %s for the next mission' % words[1], words[1]
     return False, 'no mission is running', next_level
+
+
+class Tries(object):
+    """A step's retries (the mission's policy, per PAB) and its one free
+    re-clamp: a junction PAB refused at its start because the drive up to
+    the junction rolled the robot out of its clamp's region (bench/
+    mission_sweep) is cured by a re-clamp; spending a retry on it left none
+    for what can go wrong later in the turn."""
+
+    def __init__(self, retries):
+        self.left, self.free = retries, True
+
+    def spend(self, refused_at_start):
+        """Take one try (the free one for a refusal at the start); False when none is left."""
+        if refused_at_start and self.free:
+            self.free = False
+            return True
+        if self.left <= 0:
+            return False
+        self.left -= 1
+        return True
 
 
 class Stop(Exception):
@@ -183,7 +205,7 @@ class Executive(object):
         return self._end('succeeded', '%d PABs, at %.0f mm' % (len(steps), self.localiser.along_m * 1000))
 
     def _run_step(self, step):
-        retries_left = self._retries(step)
+        tries = Tries(self._retries(step))
         resuming = turn_begun = False
         while True:
             self._await_go(step)
@@ -212,13 +234,13 @@ class Executive(object):
                            % (self.step_index + 1, step.pab, report.message))
             if report.junction_missing:
                 raise Stop('mismatch', str(self.localiser.junction_missing(step.junction, abs(step.distance_mm))))
-            if (report.status == 'rejected' and not self._reclamp_may_help(step)) or retries_left <= 0:
+            refused_at_start = report.status == 'rejected' and self._reclamp_may_help(step)
+            if (report.status == 'rejected' and not refused_at_start) or not tries.spend(refused_at_start):
                 raise Stop('aborted', 'step %d (%s) %s: %s' % (self.step_index + 1, step.pab, report.status,
                                                               report.message))
-            retries_left -= 1
             turn_begun = self._check_rerun(step, report, 'abort') or turn_begun
             self._say('step %d (%s) %s: %s; retrying (%d left)'
-                      % (self.step_index + 1, step.pab, report.status, report.message, retries_left))
+                      % (self.step_index + 1, step.pab, report.status, report.message, tries.left))
             if report.status == 'rejected' or not turn_begun:
                 self._reclamp(step, 'retry')
 
