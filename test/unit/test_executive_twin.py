@@ -12,6 +12,8 @@ bench/mission_sweep runs the same over many start rolls with sensor noise.
   reason;
 - a pause during the T-joint holds the robot safe; resume goes on from
   where the robot is;
+- a pause half round a bend: resume sends the turn again as it is and it
+  goes on from where the robot is;
 - a route through two mitre bends and a T-joint (inspection_network_90)
   ends at its target, re-anchored at each junction.
 """
@@ -207,3 +209,35 @@ def test_a_pause_during_the_t_joint_holds_the_robot_safe_and_resume_goes_on_from
     assert [g.step.pab for g in robot.goals[goals_at_pause:]] == resumed_pabs, log
     assert run.localiser.fixes[-1].junction == 'tee_1'
     assert truth_m > planner.junctions(pipe_map)[0].exit_m + 0.1, truth_m
+
+
+def test_a_pause_while_the_middle_swings_round_a_bend_resumes_the_turn_where_it_is():
+    """Paused half round the first bend of inspection_90 (the middle swinging
+    round, the front clamped in the new pipe): the safe hold on the wire;
+    resume sends the turn again as it is, without a re-clamp (a Clamp
+    Sideways there would undo the turn), the turn's PAB goes on from where
+    the robot senses it is, and the route ends at its target, judged by the
+    twin's ground truth."""
+    pipe_map = network.load(network.world_path('inspection_90'))
+    plan = planner.plan(pipe_map, ['launch_pit', 'after_bend'], SETTINGS, MAX_DRIVE_MM, None, True)
+    paused = threading.Event()
+    with SimHarness(speedup=TEE_SPEEDUP, world='inspection_90', orientation=UPRIGHT) as h:
+        robot, run = executive(plan, h, pipe_map.points['launch_pit'],
+                               progress=lambda p: p.waiting_for.startswith(ex.WAIT_RESUME) and paused.set())
+        on_pab_state(h, 'Taking Mitre bend', junction.SWINGING_MIDDLE,
+                     lambda: threading.Thread(target=run.pause, args=('test',)).start())
+        worker, out = run_in_thread(run)
+        while not paused.wait(1.0) and worker.is_alive():      # a mission that ends instead of waiting
+            pass
+        assert paused.is_set(), run.log[-5:]
+        sent = h.wires['setpoint'].sent[-1][1]
+        assert all(sent[i] == 0 for i in SAFE_INDICES.values()), sent      # the safe hold on the wire
+        assert robot.goals[-1].step.pab == 'MITRE_BEND' and robot.goals[-1].status == 'preempted'
+        goals_at_pause = len(robot.goals)
+        run.resume()
+        outcome = finished(run, worker, out)
+        truth_m = robot_along_m(pipe_map, h.ground_truth())
+    log = '\n'.join(outcome.log)
+    assert outcome.status == 'succeeded', log
+    assert [g.step.pab for g in robot.goals[goals_at_pause:]] == ['MITRE_BEND', 'DRIVE', 'HOME'], log
+    assert abs(truth_m - pipe_map.points['after_bend']) < 0.05, (truth_m, log)
