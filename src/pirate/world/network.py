@@ -255,14 +255,14 @@ def _piece(kind, spec, diameter, entry, source, where):
         out = Frame(_vec_add(side.origin, side.axes[0], diameter / 2), side.axes)
         return Piece(kind, spec, diameter, entry, out, diameter, None)
     _check_tee(spec, source, where)
-    ahead = Frame(_vec_add(corner.origin, corner.axes[0], diameter / 2), corner.axes)
     out = Frame(_vec_add(side.origin, side.axes[0], diameter / 2), side.axes)
     if spec['enter'] == 'branch':       # turn to the side into the run; its other end is open
         opposite = turned(turned(side, turn), turn)
         return Piece(kind, spec, diameter, entry, out, diameter, Frame(opposite.origin, opposite.axes))
     if tee_leaves_by(spec) == 'branch':     # turn to the side into the branch; the run ahead is open
         return Piece(kind, spec, diameter, entry, out, diameter, Frame(corner.origin, corner.axes))
-    return Piece(kind, spec, diameter, entry, ahead, diameter, Frame(side.origin, side.axes))  # straight on
+    ahead = Frame(_vec_add(corner.origin, corner.axes[0], diameter / 2), corner.axes)   # straight on
+    return Piece(kind, spec, diameter, entry, ahead, diameter, Frame(side.origin, side.axes))
 
 
 def _check_tee(spec, source, where):
