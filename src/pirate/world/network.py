@@ -251,11 +251,10 @@ def _piece(kind, spec, diameter, entry, source, where):
         raise WorldError('%s: %s (%s): direction %r is not one of %s' % (source, where, kind, turn, ', '.join(TURNS)))
     corner = Frame(_vec_add(entry.origin, entry.axes[0], diameter / 2), entry.axes)
     side = turned(corner, turn)
+    out = Frame(_vec_add(side.origin, side.axes[0], diameter / 2), side.axes)     # where a turn leaves
     if kind == 'mitre':
-        out = Frame(_vec_add(side.origin, side.axes[0], diameter / 2), side.axes)
         return Piece(kind, spec, diameter, entry, out, diameter, None)
     _check_tee(spec, source, where)
-    out = Frame(_vec_add(side.origin, side.axes[0], diameter / 2), side.axes)
     if spec['enter'] == 'branch':       # turn to the side into the run; its other end is open
         opposite = turned(turned(side, turn), turn)
         return Piece(kind, spec, diameter, entry, out, diameter, Frame(opposite.origin, opposite.axes))
