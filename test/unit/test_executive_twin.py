@@ -15,13 +15,16 @@ bench/mission_sweep runs the same over many start rolls with sensor noise.
 - a pause half round a bend: resume sends the turn again as it is and it
   goes on from where the robot is;
 - a route through two mitre bends and a T-joint (inspection_network_90)
-  ends at its target, re-anchored at each junction.
+  ends at its target, re-anchored at each junction;
+- a route from a main into the branch of a T-joint entered through its run
+  (tee_run_branch_left_90 with points) ends at its target in the branch.
 """
 import math
 import re
 import threading
 
 import pytest
+import yaml
 
 from pirate.sequencer.pabs import junction
 from pirate.sim.harness import SimHarness
@@ -30,7 +33,7 @@ from pirate.supervisory import planner
 from pirate.supervisory.harness_robot import HarnessRobot
 from pirate.supervisory.localiser import Localiser
 from pirate.supervisory.plan_cli import load_settings
-from pirate.supervisory.truth import on_each_pab_state, on_pab_state, robot_along_m
+from pirate.supervisory.truth import middle, on_each_pab_state, on_pab_state, robot_along_m
 from pirate.world import network
 from test_sequencer_sim import SAFE_INDICES
 
@@ -129,6 +132,30 @@ def test_a_route_through_two_turns_and_a_t_joint_ends_at_its_target():
     assert [f.junction for f in fixes] == ['mitre_1', 'tee_1', 'mitre_2']
     assert all(abs(f.mapped_m - at_sensing[i]) < 0.05 for i, f in enumerate(fixes)), (fixes, at_sensing)
     assert abs(run.localiser.along_m - truth_m) < 0.05, (run.localiser.along_m, truth_m)
+
+
+def test_a_route_from_the_main_into_a_branch_ends_at_its_target_in_the_branch():
+    """tee_run_branch_left_90 (the T-joint entered through its run, left by
+    its branch to the left) with a pit and a target 500 mm into the branch:
+    Clamp Sideways LEFT, T_JOINT LEFT, the robot's middle really in the
+    branch at the end (ground truth) and the estimate, re-anchored where the
+    turn ends, within 50 mm of the truth."""
+    with open(network.world_path('tee_run_branch_left_90')) as stream:
+        layout = yaml.safe_load(stream)
+    tee_exit_mm = 800 + 90
+    pipe_map = network.build(dict(layout, points=[{'name': 'pit', 'at_mm': layout['start']['at_mm']},
+                                                  {'name': 'target', 'at_mm': tee_exit_mm + 500}]))
+    plan = planner.plan(pipe_map, ['pit', 'target'], SETTINGS, MAX_DRIVE_MM, None, True)
+    planner.check_runnable(plan)
+    with SimHarness(speedup=TEE_SPEEDUP, world='tee_run_branch_left_90', orientation=UPRIGHT + 0.1, seed=11) as h:
+        robot, run = executive(plan, h, pipe_map.points['pit'])
+        outcome = finished(run, *run_in_thread(run))
+        truth = h.ground_truth()
+    assert outcome.status == 'succeeded', outcome.log
+    assert [(g.step.pab, g.step.option) for g in robot.goals] == [
+        ('CLAMP_SIDEWAYS', 'LEFT'), ('DRIVE', None), ('T_JOINT', 'LEFT'), ('DRIVE', None), ('HOME', None)]
+    assert middle(truth)[1] > 0.045 + 0.2, middle(truth)     # well into the branch, left of the main's wall
+    assert abs(run.localiser.along_m - robot_along_m(pipe_map, truth)) < 0.05
 
 
 def shifted_map(first_mm, target_mm):

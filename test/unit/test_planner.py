@@ -141,6 +141,27 @@ def test_entering_a_tee_through_its_branch_turns_toward_its_side():
     assert pabs(run(net, 'a', 'b'))[:3] == [('CLAMP_SIDEWAYS', 'RIGHT'), ('DRIVE', None), ('T_JOINT', 'RIGHT')]
 
 
+@pytest.mark.parametrize('side', ['left', 'right'])
+def test_entering_a_tee_through_its_run_and_leaving_by_its_branch_is_a_turn_toward_its_side(side):
+    """The route turns into the branch: Clamp Sideways toward the turn, T_JOINT
+    LEFT / RIGHT, ending where a turn leaves the robot; the run ahead is the
+    side not taken (straight), and the real server runs the plan."""
+    net = world([{'type': 'straight', 'length_mm': 1500},
+                 {'type': 'tee', 'enter': 'run', 'side': side, 'leave': 'branch'},
+                 {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 2500})
+    route_plan = run(net, 'a', 'b')
+    assert pabs(route_plan) == [('CLAMP_SIDEWAYS', side.upper()), ('DRIVE', None), ('T_JOINT', side.upper()),
+                                ('DRIVE', None), ('HOME', None)]
+    tee = route_plan.steps[2].junction
+    assert (tee.kind, tee.direction, tee.open_side) == ('tee', side, 'straight')
+    assert required_clamp(tee.kind, tee.direction, tee.open_side) == (route_plan.steps[0].pab, side.upper())
+    exit_mm = 1500 + 90
+    assert route_plan.steps[1].distance_mm == pytest.approx(1500 - FRONT - APPROACH - 200)
+    assert route_plan.steps[2].end_m * 1000 == pytest.approx(exit_mm + TURN_END)
+    assert route_plan.steps[3].distance_mm == pytest.approx(2500 - exit_mm - TURN_END)
+    planner.check_runnable(route_plan)
+
+
 def test_a_bend_up_needs_no_sideways_clamp():
     net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'mitre', 'turn': 'up'},
                  {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 2500})

@@ -345,3 +345,16 @@ def test_safe_hold_without_any_state_still_stops(rig):
     prims.setpoint.set('bend_iii', -200)
     prims.safe_hold()
     assert wires['setpoint'].sent[-1][11] == 0 and wires['setpoint'].sent[-1][6] == 0
+
+
+def test_follow_ends_with_its_own_timeout_when_a_state_lands_on_the_deadline(rig):
+    """A state stamped exactly at the end of ``follow``'s time ends it with
+    TimedOut naming the primitive and its time, rather than a zero-length
+    wait for one more state (which the real feed reported as a wall-clock
+    timeout of 0.0 s: a swing round a corner that stalled, notes/issue-10.md)."""
+    prims, feed, _ = rig
+    feed.states = [view()._replace(stamp=stamp) for stamp in (1.5, 2.0)]
+    acted = []
+    with pytest.raises(TimedOut, match=r'swing: bend_iii >= 1.65 not reached within 1.0 s'):
+        prims.follow('swing', acted.append, lambda v: False, 'bend_iii >= 1.65', 1.0)
+    assert [v.stamp for v in acted] == [1.0, 1.5] and [w[2] for w in feed.waits] == [1.0, 0.5]

@@ -172,6 +172,29 @@ def test_tee_entered_through_its_branch_is_open_at_the_far_run_end():
     assert _ray(robot, centre, numpy.negative(tee.entry.axes[0])) == -1   # back down the branch
 
 
+@pytest.mark.parametrize('side', ['left', 'right'])
+def test_tee_entered_through_its_run_and_left_by_its_branch_is_open_ahead_and_the_branch_is_there(side):
+    straight = {'type': 'straight', 'length_mm': 500}
+    net = network.build({'pieces': [straight, {'type': 'tee', 'enter': 'run', 'side': side, 'leave': 'branch'},
+                                    straight]})
+    robot = TwinRobot(net, settle_s=0.0)
+    tee, radius = net.pieces[1], 0.045
+    wall = radius / math.cos(math.pi / 24)                  # a flat segment's corner
+    centre = numpy.add(tee.entry.origin, numpy.multiply(tee.entry.axes[0], radius))
+    assert _ray(robot, centre, tee.stub.axes[0]) == -1                    # the run's far end, ahead, is open
+    assert _ray(robot, centre, tee.exit.axes[0]) == -1                    # on into the branch and its straight
+    assert 0 < _ray(robot, centre, numpy.negative(tee.exit.axes[0])) <= wall + 1e-6   # the run's wall opposite
+    assert _ray(robot, centre, numpy.negative(tee.entry.axes[0])) == -1   # back down the run
+    # The branch is a pipe, not a hole: its walls stand beside the way out, off the run.
+    in_branch = numpy.add(tee.exit.origin, numpy.multiply(tee.exit.axes[0], 0.02))
+    for across in (tee.exit.axes[1], numpy.negative(tee.exit.axes[1]), tee.exit.axes[2]):
+        assert radius - 1e-6 <= _ray(robot, in_branch, across) <= wall + 1e-6
+    # The run goes on past the hole: its wall stands above and below the axis ahead.
+    ahead = numpy.add(centre, numpy.multiply(tee.entry.axes[0], 1.5 * radius))
+    for across in (tee.entry.axes[2], numpy.negative(tee.entry.axes[2])):
+        assert radius - 1e-6 <= _ray(robot, ahead, across) <= wall + 1e-6
+
+
 @pytest.mark.parametrize('diameter', [90, 110])
 def test_clamp_reaches_the_angle_the_geometry_predicts(diameter):
     apex = math.asin((diameter / 1000.0 - WHEEL_D_M) / L_M)   # eq 2.1: the V's apex wheel on the wall

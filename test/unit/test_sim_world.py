@@ -47,6 +47,39 @@ def test_tee_entered_through_its_branch_leaves_the_far_run_open():
     assert _close(tee.stub.axes[0], (0.0, -1.0, 0.0))
 
 
+@pytest.mark.parametrize('side, turned_to, sign', [('left', (0.0, 1.0, 0.0), 1.0), ('right', (0.0, -1.0, 0.0), -1.0)])
+def test_tee_entered_through_its_run_and_left_by_its_branch_turns_there_its_run_open_ahead(side, turned_to, sign):
+    world = network.build({'pieces': [{'type': 'straight', 'length_mm': 500},
+                                      {'type': 'tee', 'enter': 'run', 'side': side, 'leave': 'branch'},
+                                      {'type': 'straight', 'length_mm': 300}]})
+    tee, d = world.pieces[1], 0.09
+    assert _close(tee.exit.axes[0], turned_to)                            # on along the branch
+    assert _close(tee.exit.origin, (0.5 + d / 2, sign * d / 2, 0.0))     # the branch's mouth at the run's wall
+    assert _close(tee.stub.axes[0], (1.0, 0.0, 0.0))                      # the run's far end, ahead, is the stub
+    assert _close(tee.stub.origin, (0.5 + d / 2, 0.0, 0.0))
+    assert _close(world.pieces[2].entry.axes[0], turned_to) and math.isclose(world.length, 0.5 + d + 0.3)
+    assert network.turns_at_corner(tee)
+
+
+def test_leave_run_is_the_default_straight_on():
+    spec = {'type': 'tee', 'enter': 'run', 'side': 'up'}
+    pieces = [{'type': 'straight', 'length_mm': 500}, spec, {'type': 'straight', 'length_mm': 300}]
+    default, explicit = network.build({'pieces': pieces}), network.build({'pieces': [
+        pieces[0], dict(spec, leave='run'), pieces[2]]})
+    assert default.pieces[1].exit == explicit.pieces[1].exit and _close(default.pieces[1].exit.axes[0], (1, 0, 0))
+    assert default.pieces[1].stub == explicit.pieces[1].stub and not network.turns_at_corner(default.pieces[1])
+
+
+@pytest.mark.parametrize('mm', [90, 110])
+@pytest.mark.parametrize('side', ['left', 'right'])
+def test_the_run_branch_worlds_have_the_branch_entry_worlds_distances(side, mm):
+    run_entry = network.load(os.path.join(WORLDS, 'tee_run_branch_%s_%d.yaml' % (side, mm)))
+    branch_entry = network.load(os.path.join(WORLDS, 'tee_branch_%s_%d.yaml' % (side, mm)))
+    assert run_entry.pieces[1].spec == {'type': 'tee', 'enter': 'run', 'side': side, 'leave': 'branch'}
+    assert [p.length for p in run_entry.pieces] == [p.length for p in branch_entry.pieces]
+    assert run_entry.start_m == branch_entry.start_m and run_entry.pieces[1].exit == branch_entry.pieces[1].exit
+
+
 def _refusal(data, tmp_path):
     path = tmp_path / 'bad.yaml'
     path.write_text(yaml.safe_dump(data))
@@ -73,6 +106,16 @@ STRAIGHT = {'type': 'straight', 'length_mm': 500}
                  {'type': 'straight', 'length_mm': 100}, {'type': 'mitre', 'turn': 'left'},
                  {'type': 'straight', 'length_mm': 100}, {'type': 'mitre', 'turn': 'left'},
                  {'type': 'straight', 'length_mm': 400}]}, 'pieces[6]', 'overlaps pieces[0]'),
+    ({'pieces': [STRAIGHT, {'type': 'tee', 'enter': 'branch', 'side': 'left', 'leave': 'branch'}, STRAIGHT]},
+     'pieces[1]', 'can only be left by its run'),
+    ({'pieces': [STRAIGHT, {'type': 'tee', 'enter': 'run', 'side': 'left', 'leave': 'side'}, STRAIGHT]},
+     'pieces[1]', "leave 'side' is not one of"),
+    ({'pieces': [STRAIGHT, {'type': 'tee', 'enter': 'top', 'side': 'left'}, STRAIGHT]},
+     'pieces[1]', "enter 'top' is not one of"),
+    ({'pieces': [STRAIGHT, {'type': 'tee', 'enter': 'run', 'side': 'left', 'leave': 'branch'},
+                 {'type': 'straight', 'length_mm': 100}, {'type': 'mitre', 'turn': 'left'},
+                 {'type': 'straight', 'length_mm': 100}, {'type': 'mitre', 'turn': 'left'},
+                 {'type': 'straight', 'length_mm': 600}]}, 'pieces[6]', 'overlaps pieces[0]'),
     ({'pieces': [STRAIGHT], 'obstacles': [{'type': 'step', 'at_mm': 900, 'height_mm': 3}]},
      'obstacles[0]', 'outside the network'),
     ({'pieces': [STRAIGHT], 'obstacles': [{'type': 'boulder', 'at_mm': 100}]}, 'obstacles[0]', 'unknown element'),

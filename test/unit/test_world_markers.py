@@ -31,6 +31,17 @@ def test_every_piece_of_the_network_is_drawn():
     assert first[1] == pytest.approx((0.45, 0.0, 0.0)) and first[3] == pytest.approx((0.09, 0.09, 0.9))
 
 
+def test_a_tee_left_by_its_branch_is_drawn_turning_with_its_run_going_on_ahead():
+    world = network.build({'pieces': [{'type': 'straight', 'length_mm': 500},
+                                      {'type': 'tee', 'enter': 'run', 'side': 'left', 'leave': 'branch'},
+                                      {'type': 'straight', 'length_mm': 300}]})
+    _, leg_in, leg_out, stub, _ = world_markers.pipe_shapes(world)
+    corner = (0.545, 0.0, 0.0)
+    assert leg_in[1] == pytest.approx((0.5225, 0.0, 0.0))
+    assert leg_out[1] == pytest.approx((0.545, 0.0225, 0.0))        # half a diameter toward the branch
+    assert stub[1] == pytest.approx((corner[0] + 0.045, 0.0, 0.0))  # one diameter of run on ahead
+
+
 def test_robot_shells_reach_from_their_joint_and_wheels_sit_on_it():
     upright = (1.0, 0.0, 0.0, 0.0)
     pitched = (math.cos(0.25), 0.0, math.sin(0.25), 0.0)       # 0.5 rad about y

@@ -149,7 +149,7 @@ class MotionPrimitives(object):
             seen = view.stamp
             view = self.feed.wait_until(lambda v: v.stamp > seen, max(end - seen, 0.0),
                                         '%s: %s' % (name, text))
-            if view.stamp > end:
+            if view.stamp >= end:
                 raise TimedOut('%s: %s not reached within %.1f s' % (name, text, timeout))
         self.notify('', '%s reached %s' % (name, text))
         return view

@@ -4,12 +4,15 @@ A pipe is ``wall_segments`` boxes around its circumference, their inner
 faces at the pipe radius. A mitre bend is two such legs cut on the bend's
 45 deg plane (each box as long as the cut allows at its angle), so the
 corner is really there; a T-joint's run has the branch's hole cut out and
-the open side is left open; an end cap is a plate. Obstacles: a step is a
+the open side is left open (entered through the run or the branch, left by
+either); an end cap is a plate. Obstacles: a step is a
 plate on the floor, a reduction a narrower ring, debris a loose box.
 Pure (no MuJoCo import): it writes MJCF elements.
 """
 import math
 import xml.etree.ElementTree as ET
+
+from pirate.world.network import tee_leaves_by
 
 PIPE_CLASS = 'pipe'
 PIPE_GROUP = 1          # MuJoCo geom group of walls and obstacles (rays, rendering)
@@ -96,15 +99,20 @@ class WallBuilder(object):
                   lambda r: [(0.0, radius + radius * _dot(r, x_in))])
 
     def _tee(self, piece):
-        """Run with a hole where the branch meets it; branch cut to the run."""
+        """Run with a hole where the branch meets it; branch cut to the run.
+        The pipe the path does not take (the stub) reaches one radius past
+        the other pipe's wall, open."""
         radius = piece.diameter / 2
         centre = _add(piece.entry.origin, piece.entry.axes[0], radius)
-        if piece.spec['enter'] == 'run':
-            run_axes, run_span = piece.entry.axes, (-radius, radius)
-            branch_axis, branch_end = piece.stub.axes[0], 2 * radius
-        else:
+        if piece.spec['enter'] == 'branch':          # the run across, the path leaving along it
             run_axes, run_span = piece.exit.axes, (-2 * radius, radius)
             branch_axis, branch_end = tuple(-c for c in piece.entry.axes[0]), radius
+        elif tee_leaves_by(piece.spec) == 'branch':  # the run ahead, the path leaving by the branch
+            run_axes, run_span = piece.entry.axes, (-radius, 2 * radius)
+            branch_axis, branch_end = piece.exit.axes[0], radius
+        else:                                        # straight on along the run
+            run_axes, run_span = piece.entry.axes, (-radius, radius)
+            branch_axis, branch_end = piece.stub.axes[0], 2 * radius
         start = _add(centre, run_axes[0], run_span[0])
         length = run_span[1] - run_span[0]
         hole_mid = -run_span[0]

@@ -25,6 +25,7 @@ import collections
 
 from pirate.sequencer import goals
 from pirate.sequencer.junctions import STRAIGHT_CLAMP, is_turn, label, pab_start_clamps, required_clamp
+from pirate.world.network import turns_at_corner
 
 #: One junction of the map, as the route meets it.
 Junction = collections.namedtuple('Junction', 'name kind direction open_side entry_m exit_m diameter_mm')
@@ -57,12 +58,15 @@ def junctions(network):
 
 def _crossing(piece):
     """(direction taken, open side) of a junction on the path: the same both
-    ways in the robot's own frame (it drives back without turning round)."""
+    ways in the robot's own frame (it drives back without turning round).
+    A tee the path turns at (entered through its branch, or through its run
+    and left by its branch) is a turn to its side, the way it does not take
+    straight on; through its run it is straight on, open to its side."""
     if piece.kind == 'mitre':
         return piece.spec['turn'], None
-    if piece.spec['enter'] == 'run':
-        return 'straight', piece.spec['side']
-    return piece.spec['side'], 'straight'
+    if turns_at_corner(piece):
+        return piece.spec['side'], 'straight'
+    return 'straight', piece.spec['side']
 
 
 def plan(network, waypoints, settings, max_drive_mm, speed_mm_s=None, home=True):

@@ -9,6 +9,8 @@ node (pirate.viz.world_node) turns them into markers. No ROS import.
 """
 import math
 
+from pirate.world import network
+
 #: Shape = (kind 'cylinder'|'shell'|'wheel', centre xyz, quaternion xyzw, scale xyz).
 CAP_THICKNESS_M = 0.004
 
@@ -43,7 +45,7 @@ def pipe_shapes(world):
         else:
             corner = _add(piece.entry.origin, x_in, d / 2)
             shapes.append(_tube(piece.entry.origin, x_in, d / 2, d))
-            if piece.kind == 'mitre' or piece.spec['enter'] == 'branch':
+            if network.turns_at_corner(piece):
                 shapes.append(_tube(corner, piece.exit.axes[0], d / 2, d))
             else:
                 shapes.append(_tube(corner, x_in, d / 2, d))

@@ -13,6 +13,8 @@ format"); in short::
       - {type: straight, length_mm: 400}
       - {type: tee, enter: run, side: right}   # run: straight on, branch open to side
       - {type: straight, length_mm: 400}
+      - {type: tee, enter: run, side: left, leave: branch}   # turn left into the branch, run open ahead
+      - {type: straight, length_mm: 400}
       - {type: cap}
     obstacles:
       - {type: step, at_mm: 600, height_mm: 4}     # at_mm along the travel path
@@ -21,6 +23,13 @@ format"); in short::
     start: {at_mm: 200}              # where the robot's middle starts
     points:                          # named places on the path (the mission's map)
       - {name: launch_pit, at_mm: 200}
+
+A tee is entered through its run or its branch (``enter``) and left by its
+run or its branch (``leave``, default ``run``): ``enter: run`` goes straight
+on with the branch open to ``side``, or with ``leave: branch`` turns to
+``side`` into the branch, the run's far end (ahead) open; ``enter: branch``
+turns to ``side`` into the run, its other end open (it cannot leave by the
+branch it came in by).
 
 Each piece has an entry frame; its exit frame is where the next piece
 starts. Frames are (origin, 3x3 rotation as rows of the x/y/z axes) in
@@ -40,7 +49,7 @@ TURNS = {'left': ((0, 0, 1), 1), 'right': ((0, 0, 1), -1), 'up': ((0, 1, 0), -1)
 PIECE_KEYS = {
     'straight': {'length_mm': True, 'diameter_mm': False},
     'mitre': {'turn': True},
-    'tee': {'enter': True, 'side': True},
+    'tee': {'enter': True, 'side': True, 'leave': False},
     'cap': {},
 }
 OBSTACLE_KEYS = {
@@ -49,6 +58,8 @@ OBSTACLE_KEYS = {
     'debris': {'at_mm': True, 'size_mm': True},
 }
 TEE_ENTRIES = ('run', 'branch')
+#: How a tee may be left, by how it is entered (the branch it came in by is not a way out).
+TEE_EXITS = {'run': ('run', 'branch'), 'branch': ('run',)}
 OVERLAP_SAMPLE_M = 0.01
 
 #: One laid-out piece: kind, its entry-data, diameter (m), entry frame,
@@ -240,24 +251,50 @@ def _piece(kind, spec, diameter, entry, source, where):
         raise WorldError('%s: %s (%s): direction %r is not one of %s' % (source, where, kind, turn, ', '.join(TURNS)))
     corner = Frame(_vec_add(entry.origin, entry.axes[0], diameter / 2), entry.axes)
     side = turned(corner, turn)
+    out = Frame(_vec_add(side.origin, side.axes[0], diameter / 2), side.axes)     # where a turn leaves
     if kind == 'mitre':
-        out = Frame(_vec_add(side.origin, side.axes[0], diameter / 2), side.axes)
         return Piece(kind, spec, diameter, entry, out, diameter, None)
+    _check_tee(spec, source, where)
+    if spec['enter'] == 'branch':       # turn to the side into the run; its other end is open
+        opposite = turned(turned(side, turn), turn)
+        return Piece(kind, spec, diameter, entry, out, diameter, Frame(opposite.origin, opposite.axes))
+    if tee_leaves_by(spec) == 'branch':     # turn to the side into the branch; the run ahead is open
+        return Piece(kind, spec, diameter, entry, out, diameter, Frame(corner.origin, corner.axes))
+    ahead = Frame(_vec_add(corner.origin, corner.axes[0], diameter / 2), corner.axes)   # straight on
+    return Piece(kind, spec, diameter, entry, ahead, diameter, Frame(side.origin, side.axes))
+
+
+def _check_tee(spec, source, where):
+    """Refuse an unknown ``enter`` / ``leave``, and leaving by the branch entered by."""
     if spec['enter'] not in TEE_ENTRIES:
         raise WorldError('%s: %s (tee): enter %r is not one of %s' % (source, where, spec['enter'], TEE_ENTRIES))
-    ahead = Frame(_vec_add(corner.origin, corner.axes[0], diameter / 2), corner.axes)
-    if spec['enter'] == 'run':          # go straight on; the branch opens to the side
-        return Piece(kind, spec, diameter, entry, ahead, diameter, Frame(side.origin, side.axes))
-    out = Frame(_vec_add(side.origin, side.axes[0], diameter / 2), side.axes)
-    opposite = turned(turned(side, turn), turn)
-    return Piece(kind, spec, diameter, entry, out, diameter, Frame(opposite.origin, opposite.axes))
+    leave = tee_leaves_by(spec)
+    if leave not in TEE_EXITS['run']:
+        raise WorldError('%s: %s (tee): leave %r is not one of %s' % (source, where, leave, TEE_EXITS['run']))
+    if leave not in TEE_EXITS[spec['enter']]:
+        raise WorldError('%s: %s (tee): entered through its branch, it can only be left by its run (leave: run), '
+                         'not by the branch it came in by' % (source, where))
+
+
+def tee_leaves_by(spec):
+    """'run' or 'branch': how the path leaves a tee (its ``leave``, default run)."""
+    return spec.get('leave', 'run')
+
+
+def turns_at_corner(piece):
+    """True when the path turns at ``piece``'s corner (a mitre bend, a tee
+    entered through its branch or left by it), False straight on (a tee
+    through its run) or for a piece with no corner."""
+    if piece.kind == 'mitre':
+        return True
+    return piece.kind == 'tee' and (piece.spec['enter'] == 'branch' or tee_leaves_by(piece.spec) == 'branch')
 
 
 def _axis_samples(piece):
     """Points on the centre line of ``piece`` (and of a tee's stub)."""
     points = []
     segments = [(piece.entry.origin, piece.exit.origin)]
-    if piece.kind == 'mitre' or (piece.kind == 'tee' and piece.spec['enter'] == 'branch'):
+    if turns_at_corner(piece):
         corner = _vec_add(piece.entry.origin, piece.entry.axes[0], piece.diameter / 2)
         segments = [(piece.entry.origin, corner), (corner, piece.exit.origin)]
     if piece.stub is not None:

@@ -22,9 +22,10 @@ re-adjusts it. The part that crosses is open, so neither V presses toward
 the open side "with which no contact is possible".
 
 A turn (mitre bend LEFT / RIGHT; T-joint LEFT / RIGHT, entered through its
-branch as pirate.supervisory.planner sends it, turning into the run whose
-other end is open), in the robot's own frame: clamped
-sideways toward the turn, the new pipe lies on the tilt-positive side of
+branch turning into the run whose other end is open, or entered through its
+run turning into the branch with the run going on ahead: the PAB cannot
+tell them apart and takes them all with the same steps), in the robot's
+own frame: clamped sideways toward the turn, the new pipe lies on the tilt-positive side of
 the V's plane, which is horizontal (gravity does not load the steering).
 Lift the front module toward the turn, open the front V, then drive with
 Bend I / II in torque toward the turn side while the front tilt keeps the
@@ -38,8 +39,9 @@ mitre's far wall before the front V loses a wall, and the odometry wheel
 steering finds the opening from 210 mm before the bend as from its far
 wall (bench/junction_turn_probe). Then clamp the front at the corner
 (Bend I's spring on the wall, Bend II carrying the turn), swing the middle
-round with the rear still clamped and driving, let the front pull the
-rear through (Bend III opening, Bend IV toward the turn side) until Bend
+round with the rear still clamped and driving (Bend II opening once the
+middle has started round, so it follows the front where no wall lies
+ahead), let the front pull the rear through (Bend III opening, Bend IV toward the turn side) until Bend
 III is past straight, clamp the rear, the front, drive on so the rear
 module leaves the corner, and Clamp Sideways re-adjusts if it must. Every
 guard is in the ``turn`` row of config/guards_<mm>.yaml: measured in the
@@ -541,19 +543,46 @@ def _clamp_at_corner(ctx):
 
 def _swing_middle(ctx):
     """The rear, still clamped, drives the middle round the corner (Bend III
-    compliant) until Bend III has taken the turn."""
-    row = ctx.guards.row('turn')
-    _torque(ctx.prims, bend_iii=0)
-    _drive_until(ctx, 'swing the middle', float(row['steer_speed']),
-                 lambda v: v.angles['bend_iii'] >= float(row['swing_rad']), 'bend_iii >= %.2f' % float(row['swing_rad']))
+    compliant) until Bend III has taken the turn. Once Bend III says the
+    middle has started round (``swing_open_rad``), Bend II pushes the front
+    part's corner open (``swing_bend_ii`` counts, toward straight): the middle
+    then follows the front into the new pipe whether or not a wall lies
+    ahead of the corner. A mitre bend's far wall, or the run's far wall when
+    a T-joint is entered through its branch, turns the middle by itself; a
+    T-joint entered through its run has the run going on ahead instead, and
+    there, with Bend II left compliant, the rear pushed the middle on into
+    the run until the Bend II module caught on the branch's far edge, Bend
+    III stuck at 0.96-0.99 rad (twin). Opening Bend II from the start of the
+    swing wedged the middle in the 110 mm T-joint entered through its branch
+    (Bend III 0.66-0.78 rad, where it otherwise breaks free): hence only
+    once the middle has started round. bench/junction_turn_probe --pab
+    T_JOINT --world tee_run_branch_left_90 (notes/issue-10.md)."""
+    row, prims = ctx.guards.row('turn'), ctx.prims
+    open_from, swung = float(row['swing_open_rad']), float(row['swing_rad'])
+    opened = []
+
+    def open_corner(view):
+        if not opened and view.angles['bend_iii'] >= open_from:
+            _torque(prims, bend_ii=int(row['swing_bend_ii']))
+            opened.append(view.stamp)
+    _torque(prims, bend_iii=0)
+    prims.drive_at_velocity(float(row['steer_speed']))
+    try:
+        prims.follow('swing the middle', open_corner, lambda v: v.angles['bend_iii'] >= swung,
+                     'bend_iii >= %.2f (Bend II opening from bend_iii >= %.2f)' % (swung, open_from),
+                     float(row['timeout_s']))
+    finally:
+        prims.drive_at_velocity(0.0)
 
 
 def _bring_rear(ctx):
     """The front, clamped in the new pipe, pulls the rear through: Bend III
-    opening, Bend IV toward the turn side, until Bend III is past straight."""
+    opening, Bend IV toward the turn side, until Bend III is past straight.
+    Bend II is released again (0): held opening, it straightened the front
+    part against the pull and the rear stayed at the corner (twin)."""
     row = ctx.guards.row('turn')
     counts = int(row['rear_bend_counts'])
-    _torque(ctx.prims, bend_iii=counts, bend_iv=-counts)
+    _torque(ctx.prims, bend_ii=0, bend_iii=counts, bend_iv=-counts)
     through = float(row['rear_through_rad'])
     _drive_until(ctx, 'bring the rear through', float(row['pull_speed']),
                  lambda v: v.angles['bend_iii'] <= through, 'bend_iii <= %.2f' % through)
