@@ -133,3 +133,37 @@ def test_every_command_run_has_its_package_listed():
     assert not unknown, 'say which Debian package installs %s in COMMANDS' % sorted(unknown)
     missing = {COMMANDS[c] for c in _commands()} - _debian_packages()
     assert not missing, 'add to scripts/debian-packages.txt: %s' % sorted(missing)
+
+
+#: The ROS packages launch files start nodes from, and the Debian packages
+#: that hold their package.xml (roslaunch finds a package by it: on Debian
+#: the aggregator's binary is in -tools, its package.xml in -dev; a fresh
+#: CI machine had only the first and every launch with the aggregator died).
+LAUNCHED_PACKAGES = {
+    'diagnostic_aggregator': 'libdiagnostic-aggregator-dev',
+    'robot_state_publisher': 'ros-robot-state-publisher',
+    'rosbag': 'python3-rosbag', 'rviz': 'rviz',
+}
+LAUNCH_PKG = re.compile(r'\bpkg="([^"$]+)"')
+
+
+def _launched_packages():
+    found = set()
+    for top in ('launch', os.path.join('test', 'rostest')):
+        for folder, _, files in os.walk(os.path.join(ROOT, top)):
+            for name in files:
+                if name.endswith(('.launch', '.test')):
+                    with open(os.path.join(folder, name), encoding='utf-8') as launch:
+                        found |= set(LAUNCH_PKG.findall(launch.read()))
+    return found - {'pirate'}
+
+
+def test_every_launched_package_has_its_manifest_package_listed():
+    launched = _launched_packages()
+    assert 'diagnostic_aggregator' in launched
+    unknown = launched - set(LAUNCHED_PACKAGES)
+    assert not unknown, 'say which Debian package holds the package.xml of %s' % sorted(unknown)
+    missing = {LAUNCHED_PACKAGES[p] for p in launched} - _debian_packages()
+    assert not missing, 'add to scripts/debian-packages.txt: %s' % sorted(missing)
+    undeclared = launched - _package_xml_deps()
+    assert not undeclared, 'declare in package.xml: %s' % sorted(undeclared)
