@@ -21,6 +21,7 @@ from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.pabs import PABS, codes
 from pirate.sequencer.pabs import junction as jn
 from pirate.sequencer.pabs.base import END, PabFailed
+from pirate.sequencer.server import PabContext
 
 BOOK = GuardBook(*load_files())
 ALL_FACTS = [jn.Facts(*values) for values in itertools.product((True, False), repeat=len(jn.Facts._fields))]
@@ -220,6 +221,124 @@ def test_straight_on_through_a_t_joint_clamped_straight_is_accepted(mm):
     angles = CLAMPED if mm == 90 else dict(CLAMPED, bend_i=-1.3, bend_ii=0.7, bend_iii=0.7, bend_iv=-1.3)
     assert check(codes.T_JOINT, codes.STRAIGHT, distance=800.0, robot=view(angles=angles), mm=mm) is None
 
+
+# --- a turn's speed ------------------------------------------------------------
+SIDEWAYS_LEFT = dict(CLAMPED, bend_i=-0.65, bend_ii=0.33, bend_iii=0.33, bend_iv=-0.65)
+
+
+SIDEWAYS = {90: SIDEWAYS_LEFT, 110: dict(CLAMPED, bend_i=-0.9, bend_ii=0.45, bend_iii=0.45, bend_iv=-0.9)}
+#: mm -> the turn row's range (mm/s), measured in the twin (config/guards_<mm>.yaml).
+TURN_SPEEDS = {90: (15, 30), 110: (20, 30)}
+
+
+@pytest.mark.parametrize('mm, speed', [(90, 0.0), (90, 15.0), (90, 22.5), (90, 30.0), (110, 0.0), (110, 20.0),
+                                       (110, 30.0)])
+@pytest.mark.parametrize('name', [codes.MITRE_BEND, codes.T_JOINT])
+def test_a_turn_takes_a_speed_within_its_rows_range(name, mm, speed):
+    assert check(name, codes.LEFT, distance=800.0, speed=speed, robot=view(math.pi, SIDEWAYS[mm]), mm=mm) is None
+
+
+@pytest.mark.parametrize('mm, speed', [(90, 5.0), (90, 14.9), (90, 35.0), (90, 50.0), (90, 170.0), (110, 15.0),
+                                       (110, 50.0)])
+@pytest.mark.parametrize('name', [codes.MITRE_BEND, codes.T_JOINT])
+def test_a_turn_at_a_speed_outside_its_rows_range_is_refused_with_the_reason(name, mm, speed):
+    reason = check(name, codes.LEFT, distance=800.0, speed=speed, robot=view(math.pi, SIDEWAYS[mm]), mm=mm)
+    low, high = TURN_SPEEDS[mm]
+    assert reason.startswith('a turn is taken at %d to %d mm/s (0: 25 mm/s), not %g mm/s' % (low, high, speed)), reason
+    assert 'config/guards_%d.yaml turn goal_speed_min / goal_speed_max' % mm in reason
+    assert 'the middle never swung round' in reason
+
+
+def test_straight_on_through_a_t_joint_keeps_the_whole_drive_range():
+    assert check(codes.T_JOINT, codes.STRAIGHT, distance=800.0, speed=50.0) is None
+
+
+class _TurnRow(object):
+    """A diameter's guards whose turn row has some values replaced (a bad guard file)."""
+
+    def __init__(self, guards, **values):
+        self._guards, self._values = guards, values
+
+    def row(self, key):
+        row = self._guards.row(key)
+        return dict(row, **self._values) if key == 'turn' else row
+
+    def __getattr__(self, name):
+        return getattr(self._guards, name)
+
+
+@pytest.mark.parametrize('values, needle', [
+    (dict(goal_speed_min=30.0, goal_speed_max=10.0), 'goal_speed_min 30 <= steer_speed 25 <= goal_speed_max 10'),
+    (dict(goal_speed_min=0.0), 'goal_speed_min 0 <= steer_speed 25'),
+    (dict(goal_speed_max='fast'), 'must be numbers (mm/s)'),
+    (dict(goal_speed_min=None), 'must be numbers (mm/s)'),
+])
+def test_a_turn_speed_range_that_cannot_hold_is_refused_naming_the_file(values, needle):
+    goal = Goal(codes.MITRE_BEND, codes.LEFT, 800.0, 0.0, 90)
+    reason = PABS[codes.MITRE_BEND][1].for_goal(goal).check(goal, view(math.pi, SIDEWAYS_LEFT),
+                                                           _TurnRow(BOOK.for_diameter(90), **values))
+    assert reason.startswith('config/guards_90.yaml turn: ') and needle in reason, reason
+
+
+class _TurnPrims(object):
+    """Primitives that record (name, wheel speed mm/s, robot-s bound) and end each
+    guard at once: the speed each turn phase asks for, no physics."""
+
+    def __init__(self, guards):
+        self.guards, self.wheels, self.ran = guards, 0.0, []
+        turn = guards.row('turn')
+        self.view = RobotView(dict(SIDEWAYS_LEFT, bend_ii=float(turn['steered_rad']), bend_iii=0.0), math.pi,
+                              0.0, 0.0, 1.0, {})
+
+    def latest(self):
+        return self.view
+
+    def change_control_mode(self, joint, mode):
+        """Modes do not matter here."""
+
+    def move_module(self, joint, counts):
+        """Setpoints do not matter here."""
+
+    def drive_at_velocity(self, mm_s):
+        self.wheels = mm_s
+
+    def follow(self, name, act, done, text, timeout):
+        self.ran.append((name, self.wheels, timeout))
+        return self.view
+
+    def wait_for(self, name, guard, text, timeout=None):
+        self.ran.append((name, self.wheels, timeout))
+        return self.view
+
+
+def turn_phases(speed, mm=90):
+    """(primitive, wheel mm/s, robot-s bound) of steering, swinging and pulling at the goal's ``speed``."""
+    guards = BOOK.for_diameter(mm)
+    prims = _TurnPrims(guards)
+    goal = Goal(codes.MITRE_BEND, codes.LEFT, 800.0, speed, mm)
+    ctx = PabContext(prims, prims, guards, goal, lambda *state: None)
+    pab = PABS[codes.MITRE_BEND][1].for_goal(goal)
+    pab.actions()[jn.STEERING_FRONT](ctx)
+    jn._swing_middle(ctx)
+    jn._bring_rear(ctx)
+    return prims.ran
+
+
+@pytest.mark.parametrize('mm', [90, 110])
+def test_a_turn_steers_and_swings_at_the_goals_speed_and_pulls_at_the_rows(mm):
+    turn = BOOK.for_diameter(mm).row('turn')
+    steer_s = float(turn['steer_base_s']) + float(turn['steer_s_per_mm']) * 800.0
+    swing_s = pull_s = float(turn['timeout_s'])
+    assert turn_phases(0.0, mm) == [('steer front', 25.0, steer_s), ('swing the middle', 25.0, swing_s),
+                                    ('bring the rear through', 80.0, pull_s)]
+    assert turn_phases(30.0, mm) == [('steer front', 30.0, steer_s), ('swing the middle', 30.0, swing_s),
+                                     ('bring the rear through', 80.0, pull_s)]       # faster: not shortened
+
+
+def test_a_slower_turn_stretches_the_time_bounds_of_what_it_slows_by_the_ratio_of_the_speeds():
+    assert turn_phases(15.0) == [('steer front', 15.0, pytest.approx(25.0 / 15.0 * (45.0 + 0.15 * 800.0))),
+                                 ('swing the middle', 15.0, pytest.approx(25.0 / 15.0 * 60.0)),
+                                 ('bring the rear through', 80.0, 60.0)]
 
 # --- a turn re-sent after a cancel ----------------------------------------------
 #: What the robot sensed 2 s after a MITRE_BEND LEFT was cancelled in the

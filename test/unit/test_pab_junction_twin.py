@@ -15,7 +15,9 @@ or toward the side a T-joint turns to, entered through its branch
 90 mm, one of each in 110 mm), MITRE_BEND / T_JOINT LEFT / RIGHT steers the
 front in, brings the rear through and ends with every module in the new
 pipe, clamped on its side there (ground truth); in a straight pipe the
-same goal finds no opening and aborts with junction_missing.
+same goal finds no opening and aborts with junction_missing. A turn at a
+goal speed other than the turn row's sets the wheels to it (and to the
+row's pull speed only) and still ends in the new pipe.
 
 Cancelled at a seeded random instant of its corner part (from clamping the
 front at the corner to bringing the rear through) and re-sent, a MITRE_BEND
@@ -28,6 +30,7 @@ import time
 
 import pytest
 
+from pirate.robot import units
 from pirate.sequencer.pabs import codes
 from pirate.sequencer.pabs import junction as jn
 from pirate.sim.harness import SimHarness
@@ -127,6 +130,28 @@ def test_a_turn_left_and_right_ends_in_the_new_pipe(pattern, side, mm):
         assert all(y > new_pipe_from for y in across.values()), across          # every module in the new pipe
         assert APEX_WHEELS <= set(truth['wheel_contacts'])
         assert abs(math.remainder(truth['roll'] - roll, 2 * math.pi)) <= 0.05, truth['roll']
+        assert h.server.status() == 'Idle Clamped'
+
+
+def test_a_turn_at_the_goals_speed_steers_and_swings_at_it_and_ends_in_the_new_pipe():
+    """15 mm/s, slower than the turn row's 25: the wheels are set to the goal's
+    speed (steering, swinging, driving in) or the row's pull_speed, nothing else."""
+    option, roll, sign = SIDES['right']
+    world = network.load(network.world_path('bend_right_90'))
+    goal_counts, pull_counts = (units.mm_s_to_wheel_counts(mm_s) for mm_s in (15.0, 80.0))
+    with SimHarness(speedup=TURN_SPEEDUP, world=world.name, orientation=roll) as h:
+        clamped_sideways(h, option)
+        first = len(h.wires['setpoint'].sent)
+        reason, outcome = run_bounded(h, h.goal(codes.MITRE_BEND, option=option, distance=800.0, speed=15.0), 120.0)
+        assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+        assert h.prims.executed[:len(TURN)] == TURN
+        wheels = {sent[SAFE_INDICES['wheels']] for _, sent in h.wires['setpoint'].sent[first:]}
+        assert wheels == {0, goal_counts, pull_counts}, wheels
+        robot_wait(h, 2.0)
+        truth = h.ground_truth()
+        across = {body: sign * truth['poses'][body][0][1] for body in JOINT_BODIES}
+        assert all(y > world.pieces[1].diameter / 2 for y in across.values()), across   # every module in the new pipe
+        assert APEX_WHEELS <= set(truth['wheel_contacts'])
         assert h.server.status() == 'Idle Clamped'
 
 

@@ -62,6 +62,16 @@ rear past the corner and a part-clamped robot in a straight pipe both look
 like: Clamp Sideways first. Cancelled while driving in, nothing sensed says
 the turn is not done: a re-sent goal starts a new one.
 
+A turn's speed: the goal's ``speed`` (0: the ``turn`` row's
+``steer_speed``) sets the steering, the swing of the middle and the drive
+into the new pipe, within the row's ``goal_speed_min`` ..
+``goal_speed_max`` (measured in the twin, :data:`SPEED_WHY`); any other
+speed is refused at once with the reason. Slower than ``steer_speed`` the
+time bounds of the steering and the swing stretch by the ratio of the
+speeds (they were measured at it). The front pulls the rear through at the
+row's ``pull_speed`` whatever the goal says: where a turn leaves the robot
+(config/supervisory.yaml turn_end_mm) was measured at it.
+
 Which (kind, direction) the PAB takes is :data:`TAKEN`: straight on
 through a T-joint, a mitre bend or a T-joint left or right (90 and 110
 mm). Turns up or down are refused with the reason.
@@ -207,6 +217,12 @@ NOT_TAKEN = {
             'robot upside down',
 }
 
+#: Why a turn's speed has a range (config/guards_<mm>.yaml turn goal_speed_min / goal_speed_max;
+#: bench/junction_turn_probe --speed, notes/issue-10.md "A turn's speed").
+SPEED_WHY = ("measured in the twin: faster, the rear's wheels pushed the front V, clamped at the corner, on "
+             'along the new pipe and the middle never swung round; slower, the drive into the new pipe stood '
+             '(90 mm) or a T-joint was clamped short of its corner or rolled off the side (110 mm)')
+
 
 class JunctionMissing(PabFailed):
     """No junction within the goal's distance (the result says junction_missing)."""
@@ -252,7 +268,8 @@ class TakeJunction(Pab):
             return 'no turn guards for a %d mm pipe (config/guards_%d.yaml has no turn row)' % (
                 guards.pipe_diameter, guards.pipe_diameter)
         speed = _speed(goal, guards)
-        return self._check_distance(goal, guards) or speed_problem(speed, speed) or self._check_clamp(view, guards)
+        return (self._check_distance(goal, guards) or speed_problem(speed, speed)
+                or (self.turning and _turn_speed_problem(goal, guards)) or self._check_clamp(view, guards))
 
     @staticmethod
     def _check_distance(goal, guards):
@@ -384,11 +401,11 @@ class TakeJunction(Pab):
         In a straight pipe the walls keep Bend II far below ``steered_rad``."""
         row, prims = ctx.guards.row('turn'), ctx.prims
         distance = ctx.goal.distance or float(ctx.guards.row('junction')['search_mm'])
-        limit_s = float(row['steer_base_s']) + float(row['steer_s_per_mm']) * distance
+        limit_s = (float(row['steer_base_s']) + float(row['steer_s_per_mm']) * distance) * _slower(ctx.goal, row)
         start = ctx.feed.latest()
         self.start_mm = start.odometry
         _torque(prims, bend_i=int(row['steer_bend_i']), bend_ii=int(row['steer_bend_ii']))
-        prims.drive_at_velocity(float(row['steer_speed']))
+        prims.drive_at_velocity(_turn_speed(ctx.goal, row))
         try:
             view = prims.follow('steer front', lambda v: _tilt_along_the_turn(prims, row, v),
                                 lambda v: _steered(row, v), _steered_text(row), limit_s)
@@ -468,8 +485,43 @@ def _taken_text():
 
 
 def _speed(goal, guards):
-    """mm/s while looking and crossing: the goal's, else the junction row's."""
+    """mm/s while looking and crossing (and a turn's drive into the new pipe):
+    the goal's, else the junction row's."""
     return goal.speed or float(guards.row('junction')['search_speed'])
+
+
+def _turn_speed(goal, row):
+    """mm/s while a turn steers the front in and swings the middle round: the
+    goal's, else the turn row's ``steer_speed``. Pulling the rear through is at
+    the row's ``pull_speed`` whatever the goal says (where the turn leaves the
+    robot, config/supervisory.yaml turn_end_mm, was measured at it)."""
+    return goal.speed or float(row['steer_speed'])
+
+
+def _slower(goal, row):
+    """How many times longer than at ``steer_speed`` the speed-set phases may
+    take: their time bounds (steer_base_s, steer_s_per_mm, timeout_s) were
+    measured at ``steer_speed``; a slower goal stretches them by the ratio of
+    the speeds, a faster one keeps them (never shortened)."""
+    return max(1.0, float(row['steer_speed']) / _turn_speed(goal, row))
+
+
+def _turn_speed_problem(goal, guards):
+    """Why a turn cannot run at the goal's speed (the turn row's range, measured
+    in the twin), or None; a range that is not low <= steer_speed <= high is a
+    bad guard file, named."""
+    row, where = guards.row('turn'), 'config/guards_%d.yaml turn' % guards.pipe_diameter
+    try:
+        low, default, high = (float(row[key]) for key in ('goal_speed_min', 'steer_speed', 'goal_speed_max'))
+    except (KeyError, TypeError, ValueError) as bad:
+        return '%s: goal_speed_min / steer_speed / goal_speed_max must be numbers (mm/s): %s' % (where, bad)
+    if not 0.0 < low <= default <= high:
+        return ('%s: goal_speed_min %g <= steer_speed %g <= goal_speed_max %g mm/s does not hold'
+                % (where, low, default, high))
+    if goal.speed and not low <= goal.speed <= high:
+        return ('a turn is taken at %g to %g mm/s (0: %g mm/s), not %g mm/s (%s goal_speed_min / goal_speed_max; '
+                '%s)' % (low, high, default, goal.speed, where, SPEED_WHY))
+    return None
 
 
 def _time_bound(ctx, distance, speed):
@@ -543,7 +595,7 @@ def _clamp_at_corner(ctx):
 
 def _swing_middle(ctx):
     """The rear, still clamped, drives the middle round the corner (Bend III
-    compliant) until Bend III has taken the turn. Once Bend III says the
+    compliant) until Bend III has taken the turn, at the turn's speed. Once Bend III says the
     middle has started round (``swing_open_rad``), Bend II pushes the front
     part's corner open (``swing_bend_ii`` counts, toward straight): the middle
     then follows the front into the new pipe whether or not a wall lies
@@ -566,11 +618,11 @@ def _swing_middle(ctx):
             _torque(prims, bend_ii=int(row['swing_bend_ii']))
             opened.append(view.stamp)
     _torque(prims, bend_iii=0)
-    prims.drive_at_velocity(float(row['steer_speed']))
+    prims.drive_at_velocity(_turn_speed(ctx.goal, row))
     try:
         prims.follow('swing the middle', open_corner, lambda v: v.angles['bend_iii'] >= swung,
                      'bend_iii >= %.2f (Bend II opening from bend_iii >= %.2f)' % (swung, open_from),
-                     float(row['timeout_s']))
+                     float(row['timeout_s']) * _slower(ctx.goal, row))
     finally:
         prims.drive_at_velocity(0.0)
 
@@ -585,14 +637,14 @@ def _bring_rear(ctx):
     _torque(ctx.prims, bend_ii=0, bend_iii=counts, bend_iv=-counts)
     through = float(row['rear_through_rad'])
     _drive_until(ctx, 'bring the rear through', float(row['pull_speed']),
-                 lambda v: v.angles['bend_iii'] <= through, 'bend_iii <= %.2f' % through)
+                 lambda v: v.angles['bend_iii'] <= through, 'bend_iii <= %.2f' % through, float(row['timeout_s']))
 
 
-def _drive_until(ctx, name, speed, guard, text):
-    """Drive at ``speed`` until ``guard`` (the turn row's timeout), then stop the wheels."""
+def _drive_until(ctx, name, speed, guard, text, limit_s):
+    """Drive at ``speed`` until ``guard`` (within ``limit_s`` robot s), then stop the wheels."""
     ctx.prims.drive_at_velocity(speed)
     try:
-        ctx.prims.wait_for(name, guard, text, float(ctx.guards.row('turn')['timeout_s']))
+        ctx.prims.wait_for(name, guard, text, limit_s)
     finally:
         ctx.prims.drive_at_velocity(0.0)
 
