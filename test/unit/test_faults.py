@@ -274,6 +274,28 @@ def test_a_drive_the_wheels_cannot_do_is_refused(speed):
     assert Drive().check(type('Goal', (), dict(goal.__dict__, speed=20.0)), None, guards) is None
 
 
+@pytest.mark.parametrize('speed', [4.0, 5.0, 6.0])
+def test_a_drive_slower_than_the_progress_watchdog_needs_is_refused(speed):
+    """A Drive at 5 mm/s turns the wheels at one count per PICO sample, 4.15 mm/s,
+    slower than the watchdog's 2 mm per 0.4 s: it was accepted and then aborted
+    with "no odometry progress" while doing what it was asked (twin, turnspeed)."""
+    guards = GuardBook(*load_files()).for_diameter(90)
+    goal = type('Goal', (), dict(name=DRIVE, pipe_diameter=90, distance=50.0, speed=speed, option=0))
+    reason = Drive().check(goal, None, guards)
+    assert reason and 'progress watchdog' in reason and 'no_progress_mm' in reason, reason
+    assert Drive().check(type('Goal', (), dict(goal.__dict__, speed=10.0)), None, guards) is None
+
+
+def test_a_slow_drive_is_bounded_by_the_speed_its_wheels_turn_at():
+    """10 mm/s turns the wheels at 8.3 mm/s (two counts): the drive's time bound was
+    planned at the asked 10 mm/s, so a 147 mm drive aborted "not reached within
+    16.7 s" at 17.7 s of honest driving. It ends where asked."""
+    with SimHarness(speedup=SPEEDUP) as h:
+        clamped(h)
+        reason, outcome = run_bounded(h, h.goal(DRIVE, distance=147.0, speed=10.0))
+        assert reason is None and outcome.status == 'succeeded', outcome   # within the 10 mm tolerance
+
+
 def test_stop_in_manual_mode_cancels_a_pab_started_by_another_client():
     """14.8: Stop in Manual did not cancel a PAB sent over actionlib (15 s timeout)."""
     wires = {k: [] for k in ('s', 'c', 'l')}

@@ -56,6 +56,13 @@ def wheel_counts_to_mm_s(counts):
     return counts * WHEEL_MM_PER_COUNT / PICO_SAMPLE_S
 
 
+def wheel_speed_mm_s(mm_s):
+    """The speed (mm/s) the wheels turn at when asked for ``mm_s``: the setpoint is
+    whole counts per PICO sample, so 10 mm/s turns them at 8.3 mm/s. Time bounds
+    and watchdogs of a drive are planned with this, not with the asked speed."""
+    return wheel_counts_to_mm_s(mm_s_to_wheel_counts(mm_s))
+
+
 def odometry_to_mm(counts):
     """Wheel odometry counts -> mm."""
     return counts * WHEEL_MM_PER_COUNT

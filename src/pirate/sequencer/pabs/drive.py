@@ -15,8 +15,9 @@ wheels are commanded, odometry must gain ``no_progress_mm`` every
 wheel encoders, slipping wheels: the odometry is their median,
 pirate.state.odometry); and the whole drive never runs longer
 than its planned profile (|distance| at speed, the last part at creep speed)
-plus ``time_margin_s``. A speed whose wheel setpoint
-rounds to 0 counts is refused: the wheels would never turn.
+plus ``time_margin_s``, planned at the speed the wheels really turn at
+(whole counts per PICO sample: 10 mm/s turns them at 8.3). A speed that
+turns them slower than the progress watchdog needs is refused.
 """
 import math
 
@@ -50,7 +51,7 @@ class Drive(Pab):
 
     def check(self, goal, view, guards):
         speed = goal.speed or guards.drive['default_speed']
-        problem = speed_problem(speed, min(speed, guards.drive['creep_speed']))
+        problem = speed_problem(speed, min(speed, guards.drive['creep_speed']), guards.drive)
         if problem:
             return problem
         limit = guards.drive['max_distance']
@@ -69,7 +70,8 @@ class Drive(Pab):
         settings = ctx.guards.drive
         creep = math.copysign(min(settings['creep_speed'], abs(speed)), distance)
         fast_mm = abs(distance) - abs(speed) * settings['creep_lead']
-        planned_s = max(fast_mm, 0.0) / abs(speed) + (abs(distance) - max(fast_mm, 0.0)) / abs(creep)
+        fast_turning, creep_turning = (units.wheel_speed_mm_s(abs(mm_s)) for mm_s in (speed, creep))
+        planned_s = max(fast_mm, 0.0) / fast_turning + (abs(distance) - max(fast_mm, 0.0)) / creep_turning
         self.deadline = view.stamp + planned_s + settings['time_margin_s']   # robot time, both phases
         ctx.prims.drive_at_velocity(speed)
         if math.isnan(view.odometry):
@@ -110,13 +112,24 @@ class Drive(Pab):
         return 'drove %.1f mm by time, eq 5.3 (no odometry)' % ctx.goal.distance
 
 
-def speed_problem(speed, slowest):
-    """Why a drive at ``speed`` mm/s (its slowest phase ``slowest``) cannot run, or None."""
+def speed_problem(speed, slowest, settings):
+    """Why a drive at ``speed`` mm/s (its slowest phase ``slowest``) cannot run, or
+    None. The wheels turn at whole counts per PICO sample, and while they are
+    commanded the odometry must gain ``no_progress_mm`` every ``no_progress_s``
+    (:class:`Progress`): a speed that turns them slower than that would be
+    accepted and then aborted by the watchdog while doing what it was asked."""
     if not safety.drive_speed_ok(speed) or speed <= 0:
         return 'drive speed %.1f mm/s outside (0, %.0f] mm/s' % (speed, safety.DRIVE_MAX_MM_S)
-    if units.mm_s_to_wheel_counts(slowest) == 0:
+    turning = units.wheel_speed_mm_s(slowest)
+    if turning == 0:
         return ('drive speed %.2f mm/s is below one wheel count per PICO sample (%.1f mm/s): '
                 'the wheels would not turn' % (speed, units.wheel_counts_to_mm_s(1)))
+    watched = settings['no_progress_mm'] / settings['no_progress_s']
+    if turning < watched:
+        return ('drive speed %.1f mm/s turns the wheels at %.1f mm/s (whole counts per PICO sample), '
+                'slower than the progress watchdog needs: %.1f mm/s (config/sequencer.yaml drive '
+                'no_progress_mm %.1f mm per no_progress_s %.1f s)'
+                % (slowest, turning, watched, settings['no_progress_mm'], settings['no_progress_s']))
     return None
 
 

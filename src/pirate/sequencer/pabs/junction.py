@@ -268,7 +268,7 @@ class TakeJunction(Pab):
             return 'no turn guards for a %d mm pipe (config/guards_%d.yaml has no turn row)' % (
                 guards.pipe_diameter, guards.pipe_diameter)
         speed = _speed(goal, guards)
-        return (self._check_distance(goal, guards) or speed_problem(speed, speed)
+        return (self._check_distance(goal, guards) or speed_problem(speed, speed, guards.drive)
                 or (self.turning and _turn_speed_problem(goal, guards)) or self._check_clamp(view, guards))
 
     @staticmethod
@@ -529,7 +529,7 @@ def _time_bound(ctx, distance, speed):
     time at the speed the wheel setpoint gives (whole counts per PICO sample),
     plus the drive's margin. A wheel that stops is caught sooner by the drive's
     no-progress check."""
-    wheel_speed = units.wheel_counts_to_mm_s(units.mm_s_to_wheel_counts(speed))
+    wheel_speed = units.wheel_speed_mm_s(speed)
     factor = float(ctx.guards.row('junction')['time_factor'])
     return factor * distance / wheel_speed + ctx.guards.drive['time_margin_s']
 
