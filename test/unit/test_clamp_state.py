@@ -67,6 +67,33 @@ def test_a_part_settling_just_past_its_unclamp_guard_is_still_free():
     assert cs.idle_state(cs.classify(guards, angles(**pose), efforts)) == cs.IDLE_UNCLAMPED
 
 
+#: What the twin's robot sensed 2 s after a 90 mm MITRE_BEND RIGHT at 15 mm/s
+#: ended clamped sideways (bench/junction_turn_probe --side right --speed 15):
+#: the front's Bend I had settled 0.002 rad back past its -0.60 rad guard,
+#: its spring still on the wall; the server said "front partly clamped".
+AFTER_TURN = (dict(front_tilt=-0.05, bend_i=-0.598, bend_ii=0.39, bend_iii=0.39, bend_iv=-0.78),
+              dict(bend_i=242.0, bend_ii=-1.0, bend_iii=5.0, bend_iv=238.0), 0.019)
+
+
+def test_a_clamp_settling_just_back_past_its_guard_with_its_spring_on_the_wall_is_still_clamped():
+    guards = BOOK.for_diameter(90)
+    pose, efforts, roll = AFTER_TURN
+    assert not guards.pair('clamp_sideways', 'front').closed(angles(**pose))   # the primitive's exact guard
+    assert cs.classify(guards, angles(**pose), efforts, roll) == (cs.FULL, cs.FULL)
+    assert cs.classify_part(guards, 'front', angles(**pose), {}, roll) == cs.PARTLY   # no spring: not clamped
+
+
+@pytest.mark.parametrize('mm', [90, 110])
+def test_past_the_clamp_margin_is_not_clamped_even_pressing(mm):
+    guards = BOOK.for_diameter(mm)
+    full = guards.pair('clamp', 'rear')
+    short = full.outer.guard + cs.clamp_margin_rad(guards) + 0.005
+    pose = angles(bend_iv=short, bend_iii=full.inner.guard + 0.05)
+    assert cs.classify_part(guards, 'rear', pose, ON_WALL) != cs.FULL
+    within = angles(bend_iv=short - 0.01, bend_iii=full.inner.guard + 0.05)
+    assert cs.classify_part(guards, 'rear', within, ON_WALL) == cs.FULL
+
+
 @pytest.mark.parametrize('mm', [90, 110])
 def test_past_the_free_margin_or_pressing_is_partly_clamped(mm):
     guards = BOOK.for_diameter(mm)

@@ -42,6 +42,15 @@ deflection when the motors stop, so a clamp held at PWM 0 still reads as
 pressing. Only the clamping direction counts: an unclamp drives the bends
 against their straight stop, which loads the springs the other way.
 
+Why a margin on "clamped" (``clamp_margin_rad``): a clamp stops at its
+guard and the V then settles back a few encoder counts as the worm takes
+the load (twin, 90 mm MITRE_BEND RIGHT at 15 mm/s: the front's Bend I at
+-0.600 rad when its clamp ended, -0.598 two seconds later, spring still
+242 mNm on the wall; the server said "front partly clamped" after a
+successful turn). The spring decides whether the V presses the wall: the
+margin is far smaller than the 0.04-0.11 rad short of the wall a cancel
+can leave, which the spring rules out anyway.
+
 Why a margin on "free": Home's unclamp stops a part exactly at its unclamp
 guard, and the part then settles a few hundredths of a rad as its held
 inner bend takes up the outer bend's closure (seq_mission, 1 run in 6 under
@@ -91,6 +100,11 @@ def free_margin_rad(guards):
     return float(guards.row('clamp_state')['free_margin_rad'])
 
 
+def clamp_margin_rad(guards):
+    """How far (rad) short of a clamp guard a part whose outer spring presses the wall still reads as clamped."""
+    return float(guards.row('clamp_state')['clamp_margin_rad'])
+
+
 def on_side(guards, orientation, half=None):
     """True when the roll ``orientation`` (rad) lies within ``half`` rad of a
     side (default: the nominal band around it)."""
@@ -133,10 +147,10 @@ def classify_part(guards, part, angles, efforts, orientation=None):
     part is judged by the rows of its own roll (:func:`part_roll`): the
     rotation can put the front on a side while the rear is not."""
     roll = part_roll(part, angles, orientation)
-    if clamped(guards, guards.pair(full_row(guards, roll), part), angles, efforts):
+    if _holds(guards, guards.pair(full_row(guards, roll), part), angles, efforts):
         return FULL
     for row in CUSTOM_ROWS[part]:
-        if guards.has(row) and clamped(guards, guards.pair(row_at(guards, row, roll), part), angles, efforts):
+        if guards.has(row) and _holds(guards, guards.pair(row_at(guards, row, roll), part), angles, efforts):
             return CUSTOM
     if guards.pair('unclamp', part).opened(angles, free_margin_rad(guards)) and not pressing(guards, part, efforts):
         return FREE
@@ -144,8 +158,17 @@ def classify_part(guards, part, angles, efforts, orientation=None):
 
 
 def clamped(guards, pair, angles, efforts):
-    """True when the clamp ``pair`` holds: its angle guards AND its outer spring on the wall."""
+    """True when the clamp ``pair`` holds: its angle guards AND its outer spring on
+    the wall. Exact: the clamp primitive's guard."""
     return pair.closed(angles) and presses_wall(guards, pair.outer, efforts)
+
+
+def _holds(guards, pair, angles, efforts):
+    """:func:`clamped` for the classification: the angle guards less
+    ``clamp_margin_rad``, so a clamp that settles back past its guard while its
+    spring presses the wall does not flip to "partly clamped"."""
+    margin = clamp_margin_rad(guards)
+    return pair.closed(angles, margin) and presses_wall(guards, pair.outer, efforts)
 
 
 def presses_wall(guards, bend, efforts):

@@ -21,10 +21,10 @@ class PairGuard(collections.namedtuple('PairGuard', 'kind outer inner')):
 
     __slots__ = ()
 
-    def closed(self, angles):
-        """Clamp guard: outer at least this negative, inner at least this positive."""
-        return (angles[self.outer.joint] <= self.outer.guard
-                and angles[self.inner.joint] >= self.inner.guard)
+    def closed(self, angles, margin_rad=0.0):
+        """Clamp guard: outer at least this negative, inner at least this positive (less ``margin_rad``)."""
+        return (angles[self.outer.joint] <= self.outer.guard + margin_rad
+                and angles[self.inner.joint] >= self.inner.guard - margin_rad)
 
     def opened(self, angles, margin_rad=0.0):
         """Unclamp guard: both bends back at least this close to 0 (less ``margin_rad``)."""
