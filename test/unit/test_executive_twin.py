@@ -51,6 +51,17 @@ def executive(plan, h, start_m, settings=SETTINGS, progress=None):
                                out=lambda line: None)
 
 
+def paused_on(h, plan, start_m, server_state, pab_state):
+    """An executive on ``h`` that is paused once the server is in
+    ``server_state`` with its PAB in ``pab_state``, and not yet running:
+    (robot, run, the Event set when the mission waits for resume)."""
+    paused = threading.Event()
+    robot, run = executive(plan, h, start_m,
+                           progress=lambda p: p.waiting_for.startswith(ex.WAIT_RESUME) and paused.set())
+    on_pab_state(h, server_state, pab_state, lambda: threading.Thread(target=run.pause, args=('test',)).start())
+    return robot, run, paused
+
+
 def run_in_thread(run):
     out = {}
     worker = threading.Thread(target=lambda: out.update(outcome=run.run()), daemon=True)
@@ -208,11 +219,8 @@ def test_a_pause_during_the_t_joint_holds_the_robot_safe_and_resume_goes_on_from
     mission stops with that reason, the robot held, nothing more sent."""
     pipe_map = network.load(network.world_path('inspection_tee_90'))
     plan = planner.plan(pipe_map, ['launch_pit', 'target'], SETTINGS, MAX_DRIVE_MM, None, True)
-    paused = threading.Event()
     with SimHarness(speedup=TEE_SPEEDUP, world='inspection_tee_90', orientation=UPRIGHT) as h:
-        robot, run = executive(plan, h, pipe_map.points['launch_pit'],
-                               progress=lambda p: p.waiting_for.startswith(ex.WAIT_RESUME) and paused.set())
-        on_pab_state(h, TAKING, pause_in, lambda: threading.Thread(target=run.pause, args=('test',)).start())
+        robot, run, paused = paused_on(h, plan, pipe_map.points['launch_pit'], TAKING, pause_in)
         worker, out = run_in_thread(run)
         if resumed_pabs is None:
             outcome = finished(run, worker, out)
@@ -247,12 +255,9 @@ def test_a_pause_while_the_middle_swings_round_a_bend_resumes_the_turn_where_it_
     twin's ground truth."""
     pipe_map = network.load(network.world_path('inspection_90'))
     plan = planner.plan(pipe_map, ['launch_pit', 'after_bend'], SETTINGS, MAX_DRIVE_MM, None, True)
-    paused = threading.Event()
     with SimHarness(speedup=TEE_SPEEDUP, world='inspection_90', orientation=UPRIGHT) as h:
-        robot, run = executive(plan, h, pipe_map.points['launch_pit'],
-                               progress=lambda p: p.waiting_for.startswith(ex.WAIT_RESUME) and paused.set())
-        on_pab_state(h, 'Taking Mitre bend', junction.SWINGING_MIDDLE,
-                     lambda: threading.Thread(target=run.pause, args=('test',)).start())
+        robot, run, paused = paused_on(h, plan, pipe_map.points['launch_pit'], 'Taking Mitre bend',
+                                       junction.SWINGING_MIDDLE)
         worker, out = run_in_thread(run)
         while not paused.wait(1.0) and worker.is_alive():      # a mission that ends instead of waiting
             pass
