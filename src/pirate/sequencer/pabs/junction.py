@@ -268,8 +268,9 @@ class TakeJunction(Pab):
             return 'no turn guards for a %d mm pipe (config/guards_%d.yaml has no turn row)' % (
                 guards.pipe_diameter, guards.pipe_diameter)
         speed = _speed(goal, guards)
-        return (self._check_distance(goal, guards) or speed_problem(speed, speed, guards.drive)
-                or (self.turning and _turn_speed_problem(goal, guards)) or self._check_clamp(view, guards))
+        # a turn's own measured range first: it says more than the drive's limits
+        return (self._check_distance(goal, guards) or (self.turning and _turn_speed_problem(goal, guards))
+                or speed_problem(speed, speed, guards.drive) or self._check_clamp(view, guards))
 
     @staticmethod
     def _check_distance(goal, guards):
