@@ -246,18 +246,19 @@ def test_a_pause_during_the_t_joint_holds_the_robot_safe_and_resume_goes_on_from
     assert truth_m > planner.junctions(pipe_map)[0].exit_m + 0.1, truth_m
 
 
-def test_a_pause_while_the_middle_swings_round_a_bend_resumes_the_turn_where_it_is():
+@pytest.mark.parametrize('pause_in', [junction.SWINGING_MIDDLE, junction.DRIVING_IN])
+def test_a_pause_half_round_a_bend_resumes_the_turn_where_it_is(pause_in):
     """Paused half round the first bend of inspection_90 (the middle swinging
-    round, the front clamped in the new pipe): the safe hold on the wire;
-    resume sends the turn again as it is, without a re-clamp (a Clamp
-    Sideways there would undo the turn), the turn's PAB goes on from where
-    the robot senses it is, and the route ends at its target, judged by the
-    twin's ground truth."""
+    round, the front clamped in the new pipe; or driving into the new pipe,
+    where the robot senses what it senses before a bend and the server's
+    record of the turn decides): the safe hold on the wire; resume sends the
+    turn again as it is, without a re-clamp (a Clamp Sideways there would
+    undo the turn), the turn's PAB goes on from where the robot is, and the
+    route ends at its target, judged by the twin's ground truth."""
     pipe_map = network.load(network.world_path('inspection_90'))
     plan = planner.plan(pipe_map, ['launch_pit', 'after_bend'], SETTINGS, MAX_DRIVE_MM, None, True)
     with SimHarness(speedup=TEE_SPEEDUP, world='inspection_90', orientation=UPRIGHT) as h:
-        robot, run, paused = paused_on(h, plan, pipe_map.points['launch_pit'], 'Taking Mitre bend',
-                                       junction.SWINGING_MIDDLE)
+        robot, run, paused = paused_on(h, plan, pipe_map.points['launch_pit'], 'Taking Mitre bend', pause_in)
         worker, out = run_in_thread(run)
         while not paused.wait(1.0) and worker.is_alive():      # a mission that ends instead of waiting
             pass

@@ -30,10 +30,15 @@ def in_a_corner(f):
     return f.front_round or f.middle_round or f.middle_swung or f.rear_round
 
 
+def past_the_corner(f):
+    return f.driving_in or f.driven_in
+
+
 #: What each state's action guarantees about the facts read right after it.
 POSTCONDITION = {
     # straight on: always; a turn: from its start (what check() always accepted); the resumes below
-    jn.CHANGE_MODES: lambda f: not f.turn or (f.front and f.rear and f.straight and not in_a_corner(f)),
+    jn.CHANGE_MODES: lambda f: not f.turn or (f.front and f.rear and f.straight and not in_a_corner(f)
+                                              and not past_the_corner(f)),
     jn.SEARCHING: lambda f: f.found and not f.turn,  # else it raised JunctionMissing
     jn.STOPPING: lambda f: f.found and not f.turn,
     jn.LIFTING_FRONT: lambda f: f.turn and not f.found,
@@ -445,3 +450,55 @@ def test_a_resumed_step_needs_its_clamped_part():
             assert facts.rear, facts
         if step == jn.BRINGING_REAR:
             assert facts.front, facts
+
+
+# --- a turn re-sent after a cancel while driving into the new pipe ----------------
+#: A turn cancelled in its last steps, clamped sideways in the new pipe: what
+#: the robot senses is a robot clamped before a bend (twin, 2 s after a cancel
+#: in "driving into the new pipe", bend_left_90).
+AFTER_THE_CORNER = (dict(bend_i=-0.69, bend_ii=0.39, bend_iii=0.39, bend_iv=-0.78),
+                    dict(bend_i=239, bend_ii=1, bend_iii=3, bend_iv=236), 3.13)
+
+
+def test_a_turn_that_senses_it_is_past_the_corner_only_drives_in_or_straightens():
+    """The record (driving_in / driven_in) never starts a turn nor resumes a corner step."""
+    corner_steps = {jn.LIFTING_FRONT, jn.STEERING_FRONT, jn.CLAMPING_AT_CORNER, jn.SWINGING_MIDDLE,
+                    jn.BRINGING_REAR}
+    for facts in ALL_FACTS:
+        step = jn._first_step(facts)
+        if facts.turn and past_the_corner(facts):
+            assert step not in corner_steps, facts
+        if facts.turn and facts.toward and facts.driven_in:
+            assert step == jn.STRAIGHTENING, facts
+        if facts.turn and facts.toward and facts.driving_in and not facts.driven_in and facts.front and facts.rear:
+            assert step == jn.DRIVING_IN, facts
+        if step == jn.DRIVING_IN:
+            assert facts.front and facts.rear, facts       # drives clamped only
+
+
+def _past_the_corner(record, odometry_mm, mm=90):
+    """The first step of MITRE_BEND LEFT re-sent with the server's ``record``,
+    the robot as after the corner with its odometry at ``odometry_mm``."""
+    angles, springs, roll = AFTER_THE_CORNER
+    robot = cancelled(angles, springs, roll)._replace(odometry=odometry_mm)
+    goal = Goal(codes.MITRE_BEND, codes.LEFT, 800.0, 0.0, mm)
+    pab = PABS[codes.MITRE_BEND][1].for_goal(goal)
+    pab.carry_on(record)
+    return pab.check(goal, robot, BOOK.for_diameter(mm)), jn._first_step(pab.sensed_facts(BOOK.for_diameter(mm), robot))
+
+
+def test_cancelled_while_driving_in_the_same_turn_re_sent_drives_what_is_left():
+    record = jn.DriveIn(1000.0, 1150.0, False)
+    assert _past_the_corner(record, 1060.0) == (None, jn.DRIVING_IN)
+    assert _past_the_corner(record._replace(done=True), 1150.0) == (None, jn.STRAIGHTENING)
+
+
+@pytest.mark.parametrize('odometry_mm', [985.0, 1165.5, 40.0])
+def test_a_robot_moved_since_the_drive_in_is_not_resumed_there(odometry_mm):
+    """Outside the drive in (give or take the drive's 10 mm tolerance) the record
+    says nothing: clamped sideways, the re-sent goal is a new turn."""
+    assert _past_the_corner(jn.DriveIn(1000.0, 1150.0, False), odometry_mm) == (None, jn.LIFTING_FRONT)
+
+
+def test_without_the_record_the_same_robot_starts_a_new_turn():
+    assert _past_the_corner(None, 1060.0) == (None, jn.LIFTING_FRONT)

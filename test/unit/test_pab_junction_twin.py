@@ -174,6 +174,47 @@ def wait_for_state(h, state, wall_s=60.0):
     assert h.server.pab_state == state, h.server.pab_state
 
 
+def test_a_turn_cancelled_while_driving_in_and_re_sent_drives_the_rest_of_the_way():
+    """Clamped in the new pipe, the robot senses what it senses before a bend;
+    the server's record of the turn says where it is: the re-sent turn drives
+    what is left of its drive in (before: it started a new turn and aborted
+    junction_missing after 165 s of steering). The drive in lasts about 3
+    robot s at the search speed."""
+    seed = int(time.time() * 1000) % 100000
+    cancel_after = random.Random(seed).uniform(0.0, 2.5)
+    option, roll, sign = SIDES['left']
+    world = network.load(network.world_path('bend_left_90'))
+    with SimHarness(speedup=TURN_SPEEDUP, world=world.name, orientation=roll) as h:
+        clamped_sideways(h, option)
+        guards = h.server.book.for_diameter(90)
+        goal = h.goal(codes.MITRE_BEND, option=option, distance=800.0)
+        assert h.server.reserve(goal) is None
+        worker = threading.Thread(target=h.server.run, args=(goal,), daemon=True)
+        worker.start()
+        wait_for_state(h, jn.DRIVING_IN)
+        start_mm = h.feed.latest().odometry
+        robot_wait(h, cancel_after)
+        h.server.cancel()
+        worker.join(30.0)
+        assert not worker.is_alive()
+        robot_wait(h, 2.0)
+        what = 'seed %d: cancelled %.1f s into the drive in, %.0f mm driven' % (
+            seed, cancel_after, h.feed.latest().odometry - start_mm)
+        reason, outcome = run_bounded(h, goal, 60.0)
+        assert reason is None and outcome.status == 'succeeded', (what, reason, outcome and outcome.message)
+        assert 'resumed the drive into the new pipe' in outcome.message, (what, outcome.message)
+        assert 'steer front' not in h.prims.executed, (what, h.prims.executed)
+        driven_mm = h.feed.latest().odometry - start_mm
+        wanted_mm = float(guards.row('turn')['drive_in_mm'])
+        assert driven_mm >= wanted_mm - float(guards.drive['tolerance']) - 5.0, (what, driven_mm)   # 5: a cycle late
+        robot_wait(h, 2.0)
+        truth = h.ground_truth()
+        across = {body: sign * truth['poses'][body][0][1] for body in JOINT_BODIES}
+        assert all(y > world.pieces[1].diameter / 2 for y in across.values()), (what, across)
+        assert APEX_WHEELS <= set(truth['wheel_contacts']), what
+        assert h.server.status() == 'Idle Clamped', what
+
+
 def test_a_turn_cancelled_half_round_the_corner_and_re_sent_finishes_it():
     """The corner part lasts about 15 robot s in the twin (29-44 s of a 53 s turn)."""
     seed = int(time.time() * 1000) % 100000

@@ -11,7 +11,7 @@ import pytest
 from pirate.state.feed import RobotFeed, RobotView
 from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.pabs import PABS
-from pirate.sequencer.pabs.base import Pab
+from pirate.sequencer.pabs.base import Pab, PabFailed
 from pirate.sequencer.primitives import MotionPrimitives
 from pirate.sequencer.pabs import codes
 from pirate.sequencer.server import ABORTED, IDLE_UNCLAMPED, PREEMPTED, SUCCEEDED, PirateServer
@@ -246,6 +246,39 @@ def test_success_leaves_the_robot_alone_and_sets_the_state(rig, monkeypatch):
     assert len(wires['setpoint'].sent) == before     # no safe hold after success
     # The state is what the robot senses, not what the PAB claims to leave.
     assert server.status() == IDLE_UNCLAMPED and server.active is None
+
+
+class Leaves(Pab):
+    """Fails, leaving a record of its run; says what it was handed."""
+    name = 'Leaves'
+    handed = []
+
+    def carry_on(self, record):
+        Leaves.handed.append(record)
+
+    def unfinished(self):
+        return 'half done'
+
+    def run(self, ctx):
+        raise PabFailed('stopped half way')
+
+
+def test_what_a_goal_left_unfinished_goes_to_the_same_goal_only_and_once_another_runs_is_gone(rig, monkeypatch):
+    """A turn cancelled while driving into the new pipe senses like a robot
+    before a bend: only the server's record tells a re-sent turn where it is."""
+    server, feed, _, _, _ = rig
+    monkeypatch.setitem(PABS, 7, ('LEAVES', Leaves))
+    monkeypatch.setitem(PABS, 8, ('INSTANT', Instant))
+    monkeypatch.setattr(Leaves, 'handed', [])
+    feed.push(state())
+    for goal in (Goal(7), Goal(7)):
+        assert server.reserve(goal) is None and server.run(goal).status == ABORTED
+    assert Leaves.handed == ['half done'] * 2          # the second goal's check and run
+    assert server.reserve(Goal(8)) is None and server.run(Goal(8)).status == SUCCEEDED
+    assert server.reserve(Goal(7)) is None and server.run(Goal(7)).status == ABORTED
+    assert Leaves.handed == ['half done'] * 2          # a goal that succeeded in between dropped it
+    assert server.reserve(Goal(7, option=codes.RIGHT)) is None and server.run(Goal(7, option=codes.RIGHT))
+    assert Leaves.handed == ['half done'] * 2          # another option is another goal
 
 
 def test_pab_codes_match_the_action_definition():

@@ -14,7 +14,11 @@ ActionServer. Rules:
   Idle Clamped / Idle Unclamped / Idle Partly Clamped as the robot senses
   it (:mod:`pirate.sequencer.clamp_state`), whatever ended the last goal;
 - every primitive a goal runs is kept in :attr:`trace` (robot times and
-  outcome) for the result, because feedback may be lost on the way.
+  outcome) for the result, because feedback may be lost on the way;
+- what a goal that did not succeed leaves unfinished (``Pab.unfinished``:
+  a turn cancelled while driving into the new pipe, which nothing sensed
+  tells from a robot before a bend) is handed to the same goal re-sent
+  next, and dropped when any other goal runs.
 """
 import collections
 import math
@@ -57,6 +61,11 @@ class PabContext(object):
         self.report = report
 
 
+def _goal_key(goal):
+    """What makes a re-sent goal the same goal."""
+    return goal.name, goal.option, goal.pipe_diameter
+
+
 def robot_clamped(view, guards):
     """True when both parts are fully clamped as the robot senses it (angles and springs)."""
     return clamp_state.sensed(guards, view) == (clamp_state.FULL, clamp_state.FULL)
@@ -83,6 +92,7 @@ class PirateServer(object):
         self.trace = Trace()
         self._guards = None
         self._tuning = None         # tunables waiting for the running goal to end
+        self._unfinished = None     # (goal key, record) of the last goal, ended without success
         prims.notify = self._on_primitive
 
     # --- accepting --------------------------------------------------------
@@ -115,7 +125,15 @@ class PirateServer(object):
             return '%s: no robot state (is the robot connected and the state node running?)' % name
         if pab_class.requires_clamped and not robot_clamped(view, guards):
             return '%s needs the robot clamped (%s); it is not' % (name, IDLE_CLAMPED)
-        return pab_class.for_goal(goal).check(goal, view, guards)
+        return self._pab_for(goal).check(goal, view, guards)
+
+    def _pab_for(self, goal):
+        """The PAB for ``goal``, given what the same goal's last run left unfinished."""
+        pab = PABS[goal.name][1].for_goal(goal)
+        key, record = self._unfinished or (None, None)
+        if key == _goal_key(goal):
+            pab.carry_on(record)
+        return pab
 
     def cancel(self):
         """Cancel the running goal; the PAB stops at its next wake-up."""
@@ -129,9 +147,8 @@ class PirateServer(object):
     # --- running ----------------------------------------------------------
     def run(self, goal):
         """Run a reserved goal to its one :data:`Outcome`."""
-        name, pab_class = PABS[goal.name]
         guards = self.book.for_diameter(goal.pipe_diameter)
-        pab = pab_class.for_goal(goal)
+        pab = self._pab_for(goal)
         self.prims.use(guards)
         self.state = pab.name
         self.pipe_diameter, self._guards, self.trace = goal.pipe_diameter, guards, Trace()
@@ -150,6 +167,8 @@ class PirateServer(object):
         finally:
             outcome = outcome._replace(junction_odometry=getattr(pab, 'junction_odometry', math.nan),
                                        junction_missing=getattr(pab, 'junction_missing', False))
+            record = pab.unfinished() if outcome.status != SUCCEEDED else None
+            self._unfinished = (_goal_key(goal), record) if record is not None else None
             if outcome.status != SUCCEEDED:
                 self.prims.safe_hold()
             self.trace.end(self._robot_now(), outcome.status)

@@ -97,6 +97,16 @@ class Pab(object):
         """Reason the goal cannot run, or None (called before accepting)."""
         return None
 
+    def carry_on(self, record):
+        """Take what the last run of this same goal left (:meth:`unfinished`),
+        before :meth:`check` and :meth:`run`. Most PABs start from what the
+        robot senses alone and keep nothing."""
+
+    def unfinished(self):
+        """What a run that did not succeed leaves for the same goal re-sent
+        (the server keeps it until another goal runs), or None."""
+        return None
+
     def facts(self, ctx):
         """What the guards of the transitions look at, read after an action."""
         return None

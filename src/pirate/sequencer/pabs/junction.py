@@ -59,8 +59,12 @@ first step for, and says what it senses otherwise: a robot half round a
 corner is refused a turn toward the other side and straight on; the front
 clamped and the rear partly, no bend round a corner, is what clamping the
 rear past the corner and a part-clamped robot in a straight pipe both look
-like: Clamp Sideways first. Cancelled while driving in, nothing sensed says
-the turn is not done: a re-sent goal starts a new one.
+like: Clamp Sideways first. Cancelled while driving into the new pipe (or
+straightening after it), nothing the robot senses tells it from a robot
+clamped before a bend: there the server's record of this same goal decides
+(:class:`DriveIn`, :meth:`TakeJunction.unfinished`), and the re-sent goal
+drives what is left of the drive in, then re-adjusts, if the odometry says
+the robot has not left that drive since.
 
 A turn's speed: the goal's ``speed`` (0: the ``turn`` row's
 ``steer_speed``) sets the steering, the swing of the middle and the drive
@@ -119,8 +123,17 @@ DRIVING_IN = 'driving into the new pipe'
 #: pipe keeps it below); middle_swung: Bend III at least ``swing_rad``;
 #: rear_round: Bend IV at least ``resume_rear_rad`` (the rear V bent toward
 #: the turn side, coming round the corner).
+#: Remembered, not sensed (the server's record of this same goal, ended
+#: without success, :class:`DriveIn`; true only while the odometry lies
+#: within that drive, so a robot moved since is not resumed): driving_in:
+#: it ended while driving into the new pipe; driven_in: after it.
 Facts = collections.namedtuple('Facts', 'found front rear straight turn toward front_round middle_round middle_swung '
-                                        'rear_round', defaults=(False,) * 5)
+                                        'rear_round driving_in driven_in', defaults=(False,) * 7)
+
+#: Where a turn's drive into the new pipe began and ends (mm of odometry),
+#: and whether it was done: what a turn that did not succeed leaves for the
+#: same goal re-sent (the server keeps it, :meth:`TakeJunction.unfinished`).
+DriveIn = collections.namedtuple('DriveIn', 'start_mm end_mm done')
 
 FOUND = Guard('junction sensed', lambda f: f.found)
 TURN = Guard('turn', lambda f: f.turn)
@@ -134,25 +147,40 @@ def _in_a_corner(f):
     return f.front_round or f.middle_round or f.middle_swung or f.rear_round
 
 
+def _past_the_corner(f):
+    """The server's record says this turn was through its corner (driving in or after)."""
+    return f.driving_in or f.driven_in
+
+
 #: A turn from its start: clamped sideways toward it, no bend round a corner.
-START = Guard('turn AND front clamped AND rear clamped AND straight AND NOT in a corner',
-              lambda f: f.turn and f.front and f.rear and f.straight and not _in_a_corner(f))
+START = Guard('turn AND front clamped AND rear clamped AND straight AND NOT in a corner AND NOT past the corner',
+              lambda f: f.turn and f.front and f.rear and f.straight and not _in_a_corner(f)
+              and not _past_the_corner(f))
 #: Resuming a turn cancelled on the way (re-sent, same direction): the step
 #: that continues it from what the robot senses. Each needs the roll toward
 #: the goal's side; "in a corner" is front_round OR middle_round OR
-#: middle_swung OR rear_round.
-RESUME_STEERING = Guard('turn AND toward AND rear clamped AND NOT front clamped AND NOT in a corner',
-                        lambda f: f.turn and f.toward and f.rear and not f.front and not _in_a_corner(f))
-RESUME_AT_CORNER = Guard('turn AND toward AND rear clamped AND front_round AND NOT middle_round AND NOT middle_swung',
+#: middle_swung OR rear_round; "past the corner" is driving_in OR driven_in
+#: (remembered: the corner steps never resume from there).
+RESUME_STEERING = Guard('turn AND toward AND rear clamped AND NOT front clamped AND NOT in a corner '
+                        'AND NOT past the corner',
+                        lambda f: f.turn and f.toward and f.rear and not f.front and not _in_a_corner(f)
+                        and not _past_the_corner(f))
+RESUME_AT_CORNER = Guard('turn AND toward AND rear clamped AND front_round AND NOT middle_round AND NOT middle_swung '
+                         'AND NOT past the corner',
                          lambda f: f.turn and f.toward and f.rear and f.front_round and not f.middle_round
-                         and not f.middle_swung)
-RESUME_SWINGING = Guard('turn AND toward AND rear clamped AND middle_round AND NOT middle_swung',
-                        lambda f: f.turn and f.toward and f.rear and f.middle_round and not f.middle_swung)
+                         and not f.middle_swung and not _past_the_corner(f))
+RESUME_SWINGING = Guard('turn AND toward AND rear clamped AND middle_round AND NOT middle_swung '
+                        'AND NOT past the corner',
+                        lambda f: f.turn and f.toward and f.rear and f.middle_round and not f.middle_swung
+                        and not _past_the_corner(f))
 RESUME_BRINGING = Guard('turn AND toward AND front clamped AND (rear clamped AND middle_swung OR NOT rear clamped '
-                        'AND (middle_round OR middle_swung OR rear_round))',
-                        lambda f: f.turn and f.toward and f.front and (
+                        'AND (middle_round OR middle_swung OR rear_round)) AND NOT past the corner',
+                        lambda f: f.turn and f.toward and f.front and not _past_the_corner(f) and (
                             (f.rear and f.middle_swung)
                             or (not f.rear and (f.middle_round or f.middle_swung or f.rear_round))))
+RESUME_DRIVING_IN = Guard('turn AND toward AND driving_in AND NOT driven_in AND front clamped AND rear clamped',
+                          lambda f: f.turn and f.toward and f.driving_in and not f.driven_in and f.front and f.rear)
+RESUME_STRAIGHTENING = Guard('turn AND toward AND driven_in', lambda f: f.turn and f.toward and f.driven_in)
 
 MACHINE = StateMachine(CHANGE_MODES, (
     Transition(CHANGE_MODES, SEARCHING, ON),
@@ -161,6 +189,8 @@ MACHINE = StateMachine(CHANGE_MODES, (
     Transition(CHANGE_MODES, CLAMPING_AT_CORNER, RESUME_AT_CORNER),
     Transition(CHANGE_MODES, SWINGING_MIDDLE, RESUME_SWINGING),
     Transition(CHANGE_MODES, BRINGING_REAR, RESUME_BRINGING),
+    Transition(CHANGE_MODES, DRIVING_IN, RESUME_DRIVING_IN),
+    Transition(CHANGE_MODES, STRAIGHTENING, RESUME_STRAIGHTENING),
     Transition(SEARCHING, STOPPING, FOUND),
     Transition(STOPPING, UNCLAMPING_FRONT, ALWAYS),
     Transition(LIFTING_FRONT, UNCLAMPING_FRONT, ALWAYS),
@@ -251,6 +281,27 @@ class TakeJunction(Pab):
         self.sensor = None
         self.steered = None          # the RobotView in which the front had turned into the new pipe
         self.start_mm = None
+        self.carried = None          # DriveIn: the server's record of this goal's last run, if it ended driving in
+        self.drive_in = None         # DriveIn of this run, from the moment it starts driving in
+
+    # --- what an unfinished run leaves ------------------------------------------
+    def carry_on(self, record):
+        """The :class:`DriveIn` this same goal's last run left (:meth:`unfinished`)."""
+        self.carried = record
+
+    def unfinished(self):
+        """A turn that did not succeed once it was driving into the new pipe: its
+        :class:`DriveIn`, for the same goal re-sent; else None."""
+        return self.drive_in
+
+    def _carried_facts(self, guards, view):
+        """driving_in / driven_in from the record, while the odometry lies
+        within its drive (give or take the drive's tolerance, mm)."""
+        record, tolerance = self.carried, float(guards.drive['tolerance'])
+        if not self.turning or record is None or not (
+                record.start_mm - tolerance <= view.odometry <= record.end_mm + tolerance):
+            return {}
+        return {'driven_in': True} if record.done else {'driving_in': True}
 
     # --- accepting ----------------------------------------------------------
     def check(self, goal, view, guards):
@@ -327,7 +378,8 @@ class TakeJunction(Pab):
         return Facts(found=found, front=sensed.front == clamp_state.FULL, rear=sensed.rear == clamp_state.FULL,
                      straight=in_region(view.orientation, region_around(guards, 'straight', self._target())),
                      turn=self.turning,
-                     toward=in_region(view.orientation, region_around(guards, 'nominal', self._target())), **corner)
+                     toward=in_region(view.orientation, region_around(guards, 'nominal', self._target())),
+                     **dict(corner, **self._carried_facts(guards, view)))
 
     def _target(self):
         """The roll (rad) of the clamp this goal starts in: the side of a turn, upright straight on."""
@@ -350,10 +402,10 @@ class TakeJunction(Pab):
             SEARCHING: self._search,
             STOPPING: _stop_wheels,
             UNCLAMPING_FRONT: lambda ctx: ctx.prims.unclamp('front', partial=True),
-            CROSSING_FRONT: lambda ctx: _drive_by(ctx, 'drive front across', 'cross_front_mm'),
+            CROSSING_FRONT: lambda ctx: _drive_by(ctx, 'drive front across', _row_mm(ctx, 'cross_front_mm')),
             CLAMPING_FRONT: lambda ctx: _clamp(ctx, 'front'),
             UNCLAMPING_REAR: lambda ctx: ctx.prims.unclamp('rear', partial=True),
-            CROSSING_REAR: lambda ctx: _drive_by(ctx, 'drive rear across', 'cross_rear_mm'),
+            CROSSING_REAR: lambda ctx: _drive_by(ctx, 'drive rear across', _row_mm(ctx, 'cross_rear_mm')),
             CLAMPING_REAR: lambda ctx: _clamp(ctx, 'rear'),
             STRAIGHTENING: lambda ctx: Clamp(self._target()).run(ctx),
             LIFTING_FRONT: lambda ctx: ctx.prims.move_front('move_front_turn'),
@@ -361,7 +413,7 @@ class TakeJunction(Pab):
             CLAMPING_AT_CORNER: _clamp_at_corner,
             SWINGING_MIDDLE: _swing_middle,
             BRINGING_REAR: _bring_rear,
-            DRIVING_IN: lambda ctx: _drive_by(ctx, 'drive into the new pipe', 'drive_in_mm', 'turn'),
+            DRIVING_IN: self._drive_in,
         }
 
     def facts(self, ctx):
@@ -369,11 +421,25 @@ class TakeJunction(Pab):
         return self.sensed_facts(ctx.guards, ctx.feed.latest(), found)
 
     def _change_modes(self, ctx):
-        """Rotation in position, front module in PWM; a turn presses its clamped parts again."""
+        """Rotation in position, front module in PWM; a turn presses its clamped
+        parts again, and keeps the server's record only if it holds here."""
+        if not self._carried_facts(ctx.guards, ctx.feed.latest()):
+            self.carried = None
         ctx.prims.change_control_mode('rotation', 'position')
         ctx.prims.change_control_mode('front_tilt', 'pwm')
         if self.turning:
             _press_what_is_clamped(ctx)
+
+    def _drive_in(self, ctx):
+        """Drive on ``drive_in_mm`` so the rear module leaves the corner too;
+        resumed (:attr:`carried`), only what is left of that drive, nothing
+        when less than the drive's tolerance is."""
+        now = ctx.feed.latest().odometry
+        record = self.carried or DriveIn(now, now + float(ctx.guards.row('turn')['drive_in_mm']), False)
+        self.drive_in = record._replace(done=False)
+        if record.end_mm - now > float(ctx.guards.drive['tolerance']):
+            _drive_by(ctx, 'drive into the new pipe', record.end_mm - now)
+        self.drive_in = record._replace(done=True)
 
     def _search(self, ctx):
         """Drive until the junction is sensed, or JunctionMissing after the goal's distance."""
@@ -421,6 +487,10 @@ class TakeJunction(Pab):
         self.junction_odometry = view.odometry - start.odometry
 
     def summary(self, ctx):
+        if self.carried is not None:
+            return ('%s %s: resumed the drive into the new pipe (ended %s), %d motion primitives, ended clamped'
+                    % (self.kind, self.direction, 'after it' if self.carried.done else 'in it',
+                       len(ctx.prims.executed)))
         if math.isnan(self.junction_odometry):
             return ('%s %s: resumed where the robot stood in the corner, %d motion primitives, ended clamped'
                     % (self.kind, self.direction, len(ctx.prims.executed)))
@@ -650,10 +720,14 @@ def _drive_until(ctx, name, speed, guard, text, limit_s):
         ctx.prims.drive_at_velocity(0.0)
 
 
-def _drive_by(ctx, name, key, row_name='junction'):
-    """Drive row ``row_name``'s ``key`` mm of odometry at the search speed, then stop."""
-    row = ctx.guards.row(row_name)
-    distance, speed = float(row[key]), _speed(ctx.goal, ctx.guards)
+def _row_mm(ctx, key):
+    """The junction row's ``key`` (mm)."""
+    return float(ctx.guards.row('junction')[key])
+
+
+def _drive_by(ctx, name, distance):
+    """Drive ``distance`` mm of odometry at the search speed, then stop."""
+    speed = _speed(ctx.goal, ctx.guards)
     start = ctx.feed.latest()
     progress = Progress(ctx.guards.drive, start)
     ctx.prims.drive_at_velocity(speed)
