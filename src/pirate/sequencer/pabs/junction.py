@@ -130,9 +130,10 @@ DRIVING_IN = 'driving into the new pipe'
 Facts = collections.namedtuple('Facts', 'found front rear straight turn toward front_round middle_round middle_swung '
                                         'rear_round driving_in driven_in', defaults=(False,) * 7)
 
-#: Where a turn's drive into the new pipe began and ends (mm of odometry),
-#: and whether it was done: what a turn that did not succeed leaves for the
-#: same goal re-sent (the server keeps it, :meth:`TakeJunction.unfinished`).
+#: Where a turn's drive into the new pipe began and ends (mm of odometry;
+#: once done, where the wheels stopped), and whether it was done: what a
+#: turn that did not succeed leaves for the same goal re-sent (the server
+#: keeps it, :meth:`TakeJunction.unfinished`).
 DriveIn = collections.namedtuple('DriveIn', 'start_mm end_mm done')
 
 FOUND = Guard('junction sensed', lambda f: f.found)
@@ -439,7 +440,8 @@ class TakeJunction(Pab):
         self.drive_in = record._replace(done=False)
         if record.end_mm - now > float(ctx.guards.drive['tolerance']):
             _drive_by(ctx, 'drive into the new pipe', record.end_mm - now)
-        self.drive_in = record._replace(done=True)
+        # where the wheels stopped: a few mm past the planned end (110 mm twin: +8)
+        self.drive_in = record._replace(end_mm=max(record.end_mm, ctx.feed.latest().odometry), done=True)
 
     def _search(self, ctx):
         """Drive until the junction is sensed, or JunctionMissing after the goal's distance."""
