@@ -23,6 +23,7 @@ Cancelled at a seeded random instant of its corner part (from clamping the
 front at the corner to bringing the rear through) and re-sent, a MITRE_BEND
 LEFT finishes the turn from where the robot is and ends the same way.
 """
+import contextlib
 import math
 import random
 import threading
@@ -174,30 +175,63 @@ def wait_for_state(h, state, wall_s=60.0):
     assert h.server.pab_state == state, h.server.pab_state
 
 
+def random_instant(up_to_s):
+    """(seed, robot s in [0, up_to_s)): a cancel instant the test did not choose; the seed goes in its messages."""
+    seed = int(time.time() * 1000) % 100000
+    return seed, random.Random(seed).uniform(0.0, up_to_s)
+
+
+@contextlib.contextmanager
+def clamped_before_the_left_bend():
+    """A twin in bend_left_90, the robot clamped sideways LEFT before the bend:
+    (harness, world, the MITRE_BEND LEFT goal looking 800 mm)."""
+    option, roll, _ = SIDES['left']
+    world = network.load(network.world_path('bend_left_90'))
+    with SimHarness(speedup=TURN_SPEEDUP, world=world.name, orientation=roll) as h:
+        clamped_sideways(h, option)
+        yield h, world, h.goal(codes.MITRE_BEND, option=option, distance=800.0)
+
+
+def cancelled_in(h, goal, state, after_s):
+    """Run ``goal`` in ``h``, cancel it ``after_s`` robot s after its PAB
+    entered ``state``, then 2 robot s of safe hold: (odometry mm on entering
+    ``state``, the PAB state at the cancel)."""
+    assert h.server.reserve(goal) is None
+    worker = threading.Thread(target=h.server.run, args=(goal,), daemon=True)
+    worker.start()
+    wait_for_state(h, state)
+    entered_mm = h.feed.latest().odometry
+    robot_wait(h, after_s)
+    where = h.server.pab_state
+    h.server.cancel()
+    worker.join(30.0)
+    assert not worker.is_alive()
+    robot_wait(h, 2.0)
+    return entered_mm, where
+
+
+def assert_through(h, world, sign, what):
+    """Ground truth: every module in the new pipe, both apex wheels on the
+    wall; the server says Idle Clamped. Returns the truth."""
+    robot_wait(h, 2.0)
+    truth = h.ground_truth()
+    across = {body: sign * truth['poses'][body][0][1] for body in JOINT_BODIES}
+    assert all(y > world.pieces[1].diameter / 2 for y in across.values()), (what, across)
+    assert APEX_WHEELS <= set(truth['wheel_contacts']), what
+    assert h.server.status() == 'Idle Clamped', what
+    return truth
+
+
 def test_a_turn_cancelled_while_driving_in_and_re_sent_drives_the_rest_of_the_way():
     """Clamped in the new pipe, the robot senses what it senses before a bend;
     the server's record of the turn says where it is: the re-sent turn drives
     what is left of its drive in (before: it started a new turn and aborted
     junction_missing after 165 s of steering). The drive in lasts about 3
     robot s at the search speed."""
-    seed = int(time.time() * 1000) % 100000
-    cancel_after = random.Random(seed).uniform(0.0, 2.5)
-    option, roll, sign = SIDES['left']
-    world = network.load(network.world_path('bend_left_90'))
-    with SimHarness(speedup=TURN_SPEEDUP, world=world.name, orientation=roll) as h:
-        clamped_sideways(h, option)
+    seed, cancel_after = random_instant(2.5)
+    with clamped_before_the_left_bend() as (h, world, goal):
         guards = h.server.book.for_diameter(90)
-        goal = h.goal(codes.MITRE_BEND, option=option, distance=800.0)
-        assert h.server.reserve(goal) is None
-        worker = threading.Thread(target=h.server.run, args=(goal,), daemon=True)
-        worker.start()
-        wait_for_state(h, jn.DRIVING_IN)
-        start_mm = h.feed.latest().odometry
-        robot_wait(h, cancel_after)
-        h.server.cancel()
-        worker.join(30.0)
-        assert not worker.is_alive()
-        robot_wait(h, 2.0)
+        start_mm, _ = cancelled_in(h, goal, jn.DRIVING_IN, cancel_after)
         what = 'seed %d: cancelled %.1f s into the drive in, %.0f mm driven' % (
             seed, cancel_after, h.feed.latest().odometry - start_mm)
         reason, outcome = run_bounded(h, goal, 60.0)
@@ -207,43 +241,20 @@ def test_a_turn_cancelled_while_driving_in_and_re_sent_drives_the_rest_of_the_wa
         driven_mm = h.feed.latest().odometry - start_mm
         wanted_mm = float(guards.row('turn')['drive_in_mm'])
         assert driven_mm >= wanted_mm - float(guards.drive['tolerance']) - 5.0, (what, driven_mm)   # 5: a cycle late
-        robot_wait(h, 2.0)
-        truth = h.ground_truth()
-        across = {body: sign * truth['poses'][body][0][1] for body in JOINT_BODIES}
-        assert all(y > world.pieces[1].diameter / 2 for y in across.values()), (what, across)
-        assert APEX_WHEELS <= set(truth['wheel_contacts']), what
-        assert h.server.status() == 'Idle Clamped', what
+        assert_through(h, world, SIDES['left'][2], what)
 
 
 def test_a_turn_cancelled_half_round_the_corner_and_re_sent_finishes_it():
     """The corner part lasts about 15 robot s in the twin (29-44 s of a 53 s turn)."""
-    seed = int(time.time() * 1000) % 100000
-    cancel_after = random.Random(seed).uniform(0.0, 15.0)
+    seed, cancel_after = random_instant(15.0)
     option, roll, sign = SIDES['left']
-    world = network.load(network.world_path('bend_left_90'))
-    with SimHarness(speedup=TURN_SPEEDUP, world=world.name, orientation=roll) as h:
-        clamped_sideways(h, option)
-        goal = h.goal(codes.MITRE_BEND, option=option, distance=800.0)
-        assert h.server.reserve(goal) is None
-        worker = threading.Thread(target=h.server.run, args=(goal,), daemon=True)
-        worker.start()
-        wait_for_state(h, jn.CLAMPING_AT_CORNER)
-        robot_wait(h, cancel_after)
-        where = h.server.pab_state
-        h.server.cancel()
-        worker.join(30.0)
-        assert not worker.is_alive()
-        robot_wait(h, 2.0)
+    with clamped_before_the_left_bend() as (h, world, goal):
+        _, where = cancelled_in(h, goal, jn.CLAMPING_AT_CORNER, cancel_after)
         reason, outcome = run_bounded(h, goal, 120.0)
         what = 'seed %d: cancelled %.1f s into the corner, in %s' % (seed, cancel_after, where)
         if reason and 'Clamp Sideways LEFT first' in reason:      # cancelled as the rear clamped past the corner
             clamped_sideways(h, option)
         else:
             assert reason is None and outcome.status == 'succeeded', (what, reason, outcome and outcome.message)
-        robot_wait(h, 2.0)
-        truth = h.ground_truth()
-        across = {body: sign * truth['poses'][body][0][1] for body in JOINT_BODIES}
-        assert all(y > world.pieces[1].diameter / 2 for y in across.values()), (what, across)
-        assert APEX_WHEELS <= set(truth['wheel_contacts']), what
+        truth = assert_through(h, world, sign, what)
         assert abs(math.remainder(truth['roll'] - roll, 2 * math.pi)) <= 0.05, (what, truth['roll'])
-        assert h.server.status() == 'Idle Clamped', what
