@@ -137,6 +137,7 @@ RANGES = {
     ('drive', 'tolerance'): (0.5, 100.0),
     ('drive', 'no_progress_s'): (0.1, 5.0),
     ('drive', 'no_progress_mm'): (0.1, 50.0),
+    ('drive', 'no_progress_start_s'): (0.0, 5.0),
     ('drive', 'time_margin_s'): (0.1, 30.0),
     ('unclamp', 'no_progress_s'): (0.5, 15.0),
     ('unclamp', 'no_progress_rad'): (0.001, 0.1),
