@@ -84,7 +84,7 @@ class PabJunctionTest(SequencerTest):
         else:
             self.assertEqual(state, GoalStatus.SUCCEEDED, 'seed %d: %s; re-sent: %s' % (seed, text, why))
             if any(step in text for step in PAST_THE_CORNER):
-                self.assertIn('resumed the drive into the new pipe', result.message, 'seed %d' % seed)
+                self.assertIn('resumed past the corner', result.message, 'seed %d' % seed)
         rospy.loginfo('pab_junction: %s, re-sent: %s', text, result.message)
         self.assertEqual(result.server_state, 'Idle Clamped', 'seed %d: %s' % (seed, text))
         self.assertLessEqual(abs(math.remainder(self.state.orientation - target, 2 * math.pi)), 0.05,

@@ -31,7 +31,7 @@ def in_a_corner(f):
 
 
 def past_the_corner(f):
-    return f.driving_in or f.driven_in
+    return f.rear_through or f.driving_in or f.driven_in
 
 
 #: What each state's action guarantees about the facts read right after it.
@@ -460,8 +460,8 @@ AFTER_THE_CORNER = (dict(bend_i=-0.69, bend_ii=0.39, bend_iii=0.39, bend_iv=-0.7
                     dict(bend_i=239, bend_ii=1, bend_iii=3, bend_iv=236), 3.13)
 
 
-def test_a_turn_that_senses_it_is_past_the_corner_only_drives_in_or_straightens():
-    """The record (driving_in / driven_in) never starts a turn nor resumes a corner step."""
+def test_a_turn_remembered_past_the_corner_goes_on_from_where_its_record_says():
+    """The record (rear_through / driving_in / driven_in) never starts a turn nor resumes a corner step."""
     corner_steps = {jn.LIFTING_FRONT, jn.STEERING_FRONT, jn.CLAMPING_AT_CORNER, jn.SWINGING_MIDDLE,
                     jn.BRINGING_REAR}
     for facts in ALL_FACTS:
@@ -472,8 +472,13 @@ def test_a_turn_that_senses_it_is_past_the_corner_only_drives_in_or_straightens(
             assert step == jn.STRAIGHTENING, facts
         if facts.turn and facts.toward and facts.driving_in and not facts.driven_in and facts.front and facts.rear:
             assert step == jn.DRIVING_IN, facts
+        if (facts.turn and facts.toward and facts.rear_through and not (facts.driving_in or facts.driven_in)
+                and facts.front):
+            assert step == jn.CLAMPING_REAR, facts
         if step == jn.DRIVING_IN:
             assert facts.front and facts.rear, facts       # drives clamped only
+        if step == jn.CLAMPING_REAR:
+            assert facts.front, facts                      # the front holds while the rear clamps
 
 
 def _past_the_corner(record, odometry_mm, mm=90):
@@ -488,16 +493,30 @@ def _past_the_corner(record, odometry_mm, mm=90):
 
 
 def test_cancelled_while_driving_in_the_same_turn_re_sent_drives_what_is_left():
-    record = jn.DriveIn(1000.0, 1150.0, False)
+    record = jn.PastCorner('driving_in', 1000.0, 1150.0)
     assert _past_the_corner(record, 1060.0) == (None, jn.DRIVING_IN)
-    assert _past_the_corner(record._replace(done=True), 1150.0) == (None, jn.STRAIGHTENING)
+    assert _past_the_corner(record._replace(fact='driven_in', to_mm=1158.0), 1158.0) == (None, jn.STRAIGHTENING)
+
+
+def test_cancelled_while_clamping_the_rear_that_came_through_the_same_turn_re_sent_clamps_it():
+    """Front clamped, rear partly clamped, no bend round a corner: sensed, it reads
+    like a robot part-clamped in a straight pipe (Clamp Sideways first, which
+    ended the turn 150 mm short); the record says the rear came through."""
+    angles, springs, roll = REAR_CLAMPING_PAST_THE_CORNER
+    robot = cancelled(angles, springs, roll)._replace(odometry=1003.0)
+    goal = Goal(codes.MITRE_BEND, codes.LEFT, 800.0, 0.0, 90)
+    pab = PABS[codes.MITRE_BEND][1].for_goal(goal)
+    pab.carry_on(jn.PastCorner('rear_through', 1000.0, 1000.0))
+    guards = BOOK.for_diameter(90)
+    assert pab.check(goal, robot, guards) is None
+    assert jn._first_step(pab.sensed_facts(guards, robot)) == jn.CLAMPING_REAR
 
 
 @pytest.mark.parametrize('odometry_mm', [985.0, 1165.5, 40.0])
 def test_a_robot_moved_since_the_drive_in_is_not_resumed_there(odometry_mm):
     """Outside the drive in (give or take the drive's 10 mm tolerance) the record
     says nothing: clamped sideways, the re-sent goal is a new turn."""
-    assert _past_the_corner(jn.DriveIn(1000.0, 1150.0, False), odometry_mm) == (None, jn.LIFTING_FRONT)
+    assert _past_the_corner(jn.PastCorner('driving_in', 1000.0, 1150.0), odometry_mm) == (None, jn.LIFTING_FRONT)
 
 
 def test_without_the_record_the_same_robot_starts_a_new_turn():

@@ -21,7 +21,9 @@ row's pull speed only) and still ends in the new pipe.
 
 Cancelled at a seeded random instant of its corner part (from clamping the
 front at the corner to bringing the rear through) and re-sent, a MITRE_BEND
-LEFT finishes the turn from where the robot is and ends the same way.
+LEFT finishes the turn from where the robot is and ends the same way;
+cancelled while clamping the rear that came through or driving into the
+new pipe, it goes on from the server's record of the turn.
 """
 import contextlib
 import math
@@ -222,23 +224,29 @@ def assert_through(h, world, sign, what):
     return truth
 
 
-def test_a_turn_cancelled_while_driving_in_and_re_sent_drives_the_rest_of_the_way():
-    """Clamped in the new pipe, the robot senses what it senses before a bend;
-    the server's record of the turn says where it is: the re-sent turn drives
-    what is left of its drive in (before: it started a new turn and aborted
-    junction_missing after 165 s of steering). The drive in lasts about 3
-    robot s at the search speed."""
-    seed, cancel_after = random_instant(2.5)
+@pytest.mark.parametrize('state, up_to_s, resumed', [
+    (jn.CLAMPING_REAR, 3.5, 'clamping the rear that had come through'),
+    (jn.DRIVING_IN, 2.5, 'the drive into the new pipe'),
+])
+def test_a_turn_cancelled_past_the_corner_and_re_sent_goes_on_from_its_record(state, up_to_s, resumed):
+    """Once the rear has come round, the robot senses what it senses in a
+    straight pipe: clamping the rear, part-clamped (before: refused, Clamp
+    Sideways first, which ended the turn 150 mm short); driving in, clamped
+    as before a bend (before: a new turn, junction_missing after 165 s of
+    steering). The server's record of the turn says where it is: the
+    re-sent turn clamps and drives in, all of ``drive_in_mm`` in the end.
+    Clamping the rear takes about 4 robot s, the drive in about 3."""
+    seed, cancel_after = random_instant(up_to_s)
     with clamped_before_the_left_bend() as (h, world, goal):
         guards = h.server.book.for_diameter(90)
-        start_mm, _ = cancelled_in(h, goal, jn.DRIVING_IN, cancel_after)
-        what = 'seed %d: cancelled %.1f s into the drive in, %.0f mm driven' % (
-            seed, cancel_after, h.feed.latest().odometry - start_mm)
+        entered_mm, _ = cancelled_in(h, goal, state, cancel_after)
+        what = 'seed %d: cancelled %.1f s into %s, %.0f mm driven' % (
+            seed, cancel_after, state, h.feed.latest().odometry - entered_mm)
         reason, outcome = run_bounded(h, goal, 60.0)
         assert reason is None and outcome.status == 'succeeded', (what, reason, outcome and outcome.message)
-        assert 'resumed the drive into the new pipe' in outcome.message, (what, outcome.message)
+        assert 'resumed past the corner (%s)' % resumed in outcome.message, (what, outcome.message)
         assert 'steer front' not in h.prims.executed, (what, h.prims.executed)
-        driven_mm = h.feed.latest().odometry - start_mm
+        driven_mm = h.feed.latest().odometry - entered_mm
         wanted_mm = float(guards.row('turn')['drive_in_mm'])
         assert driven_mm >= wanted_mm - float(guards.drive['tolerance']) - 5.0, (what, driven_mm)   # 5: a cycle late
         assert_through(h, world, SIDES['left'][2], what)

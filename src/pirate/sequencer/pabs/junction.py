@@ -59,12 +59,13 @@ first step for, and says what it senses otherwise: a robot half round a
 corner is refused a turn toward the other side and straight on; the front
 clamped and the rear partly, no bend round a corner, is what clamping the
 rear past the corner and a part-clamped robot in a straight pipe both look
-like: Clamp Sideways first. Cancelled while driving into the new pipe (or
-straightening after it), nothing the robot senses tells it from a robot
-clamped before a bend: there the server's record of this same goal decides
-(:class:`DriveIn`, :meth:`TakeJunction.unfinished`), and the re-sent goal
-drives what is left of the drive in, then re-adjusts, if the odometry says
-the robot has not left that drive since.
+like: Clamp Sideways first. Cancelled once the rear had come round (clamping
+the rear, driving into the new pipe, straightening after it), what the
+robot senses is ambiguous or reads like a robot clamped before a bend: there
+the server's record of this same goal decides (:class:`PastCorner`,
+:meth:`TakeJunction.unfinished`), and the re-sent goal clamps, drives what
+is left of the drive in, re-adjusts, if the odometry says the robot has not
+moved since.
 
 A turn's speed: the goal's ``speed`` (0: the ``turn`` row's
 ``steer_speed``) sets the steering, the swing of the middle and the drive
@@ -124,17 +125,21 @@ DRIVING_IN = 'driving into the new pipe'
 #: rear_round: Bend IV at least ``resume_rear_rad`` (the rear V bent toward
 #: the turn side, coming round the corner).
 #: Remembered, not sensed (the server's record of this same goal, ended
-#: without success, :class:`DriveIn`; true only while the odometry lies
-#: within that drive, so a robot moved since is not resumed): driving_in:
-#: it ended while driving into the new pipe; driven_in: after it.
+#: without success, :class:`PastCorner`; true only while the odometry lies
+#: within the record's span, so a robot moved since is not resumed):
+#: rear_through: it ended after bringing the rear through, clamping;
+#: driving_in: while driving into the new pipe; driven_in: after it.
 Facts = collections.namedtuple('Facts', 'found front rear straight turn toward front_round middle_round middle_swung '
-                                        'rear_round driving_in driven_in', defaults=(False,) * 7)
+                                        'rear_round rear_through driving_in driven_in', defaults=(False,) * 8)
 
-#: Where a turn's drive into the new pipe began and ends (mm of odometry;
-#: once done, where the wheels stopped), and whether it was done: what a
-#: turn that did not succeed leaves for the same goal re-sent (the server
-#: keeps it, :meth:`TakeJunction.unfinished`).
-DriveIn = collections.namedtuple('DriveIn', 'start_mm end_mm done')
+#: What a turn that did not succeed leaves once its rear came round the
+#: corner, for the same goal re-sent (the server keeps it,
+#: :meth:`TakeJunction.unfinished`): the fact it makes true (``rear_through``,
+#: ``driving_in``, ``driven_in``) while the odometry lies in ``from_mm`` ..
+#: ``to_mm`` (give or take the drive's tolerance): where the rear came
+#: through; the drive in from its start to its planned end; once driven,
+#: to where the wheels stopped.
+PastCorner = collections.namedtuple('PastCorner', 'fact from_mm to_mm')
 
 FOUND = Guard('junction sensed', lambda f: f.found)
 TURN = Guard('turn', lambda f: f.turn)
@@ -149,8 +154,8 @@ def _in_a_corner(f):
 
 
 def _past_the_corner(f):
-    """The server's record says this turn was through its corner (driving in or after)."""
-    return f.driving_in or f.driven_in
+    """The server's record says this turn's rear had come round the corner."""
+    return f.rear_through or f.driving_in or f.driven_in
 
 
 #: A turn from its start: clamped sideways toward it, no bend round a corner.
@@ -160,8 +165,8 @@ START = Guard('turn AND front clamped AND rear clamped AND straight AND NOT in a
 #: Resuming a turn cancelled on the way (re-sent, same direction): the step
 #: that continues it from what the robot senses. Each needs the roll toward
 #: the goal's side; "in a corner" is front_round OR middle_round OR
-#: middle_swung OR rear_round; "past the corner" is driving_in OR driven_in
-#: (remembered: the corner steps never resume from there).
+#: middle_swung OR rear_round; "past the corner" is rear_through OR
+#: driving_in OR driven_in (remembered: the corner steps never resume there).
 RESUME_STEERING = Guard('turn AND toward AND rear clamped AND NOT front clamped AND NOT in a corner '
                         'AND NOT past the corner',
                         lambda f: f.turn and f.toward and f.rear and not f.front and not _in_a_corner(f)
@@ -179,6 +184,9 @@ RESUME_BRINGING = Guard('turn AND toward AND front clamped AND (rear clamped AND
                         lambda f: f.turn and f.toward and f.front and not _past_the_corner(f) and (
                             (f.rear and f.middle_swung)
                             or (not f.rear and (f.middle_round or f.middle_swung or f.rear_round))))
+RESUME_CLAMPING_REAR = Guard('turn AND toward AND rear_through AND NOT driving_in AND NOT driven_in AND front clamped',
+                             lambda f: f.turn and f.toward and f.rear_through and not f.driving_in
+                             and not f.driven_in and f.front)
 RESUME_DRIVING_IN = Guard('turn AND toward AND driving_in AND NOT driven_in AND front clamped AND rear clamped',
                           lambda f: f.turn and f.toward and f.driving_in and not f.driven_in and f.front and f.rear)
 RESUME_STRAIGHTENING = Guard('turn AND toward AND driven_in', lambda f: f.turn and f.toward and f.driven_in)
@@ -190,6 +198,7 @@ MACHINE = StateMachine(CHANGE_MODES, (
     Transition(CHANGE_MODES, CLAMPING_AT_CORNER, RESUME_AT_CORNER),
     Transition(CHANGE_MODES, SWINGING_MIDDLE, RESUME_SWINGING),
     Transition(CHANGE_MODES, BRINGING_REAR, RESUME_BRINGING),
+    Transition(CHANGE_MODES, CLAMPING_REAR, RESUME_CLAMPING_REAR),
     Transition(CHANGE_MODES, DRIVING_IN, RESUME_DRIVING_IN),
     Transition(CHANGE_MODES, STRAIGHTENING, RESUME_STRAIGHTENING),
     Transition(SEARCHING, STOPPING, FOUND),
@@ -255,6 +264,11 @@ SPEED_WHY = ("measured in the twin: faster, the rear's wheels pushed the front V
              '(90 mm) or a T-joint was clamped short of its corner or rolled off the side (110 mm)')
 
 
+#: What a resumed turn says it went on with, by the record's fact.
+RESUMED_TEXT = {'rear_through': 'clamping the rear that had come through', 'driving_in': 'the drive into the new pipe',
+                'driven_in': 'straightening after the drive into the new pipe'}
+
+
 class JunctionMissing(PabFailed):
     """No junction within the goal's distance (the result says junction_missing)."""
 
@@ -282,27 +296,27 @@ class TakeJunction(Pab):
         self.sensor = None
         self.steered = None          # the RobotView in which the front had turned into the new pipe
         self.start_mm = None
-        self.carried = None          # DriveIn: the server's record of this goal's last run, if it ended driving in
-        self.drive_in = None         # DriveIn of this run, from the moment it starts driving in
+        self.carried = None          # PastCorner: the server's record of this goal's last run
+        self.past = None             # PastCorner of this run, once its rear came round
 
     # --- what an unfinished run leaves ------------------------------------------
     def carry_on(self, record):
-        """The :class:`DriveIn` this same goal's last run left (:meth:`unfinished`)."""
+        """The :class:`PastCorner` this same goal's last run left (:meth:`unfinished`)."""
         self.carried = record
 
     def unfinished(self):
-        """A turn that did not succeed once it was driving into the new pipe: its
-        :class:`DriveIn`, for the same goal re-sent; else None."""
-        return self.drive_in
+        """A turn that did not succeed once its rear had come round: its
+        :class:`PastCorner`, for the same goal re-sent; else None."""
+        return self.past
 
     def _carried_facts(self, guards, view):
-        """driving_in / driven_in from the record, while the odometry lies
-        within its drive (give or take the drive's tolerance, mm)."""
+        """The record's fact, while the odometry lies in its span (give or
+        take the drive's tolerance, mm)."""
         record, tolerance = self.carried, float(guards.drive['tolerance'])
         if not self.turning or record is None or not (
-                record.start_mm - tolerance <= view.odometry <= record.end_mm + tolerance):
+                record.from_mm - tolerance <= view.odometry <= record.to_mm + tolerance):
             return {}
-        return {'driven_in': True} if record.done else {'driving_in': True}
+        return {record.fact: True}
 
     # --- accepting ----------------------------------------------------------
     def check(self, goal, view, guards):
@@ -413,7 +427,7 @@ class TakeJunction(Pab):
             STEERING_FRONT: self._steer_front,
             CLAMPING_AT_CORNER: _clamp_at_corner,
             SWINGING_MIDDLE: _swing_middle,
-            BRINGING_REAR: _bring_rear,
+            BRINGING_REAR: self._bring_rear,
             DRIVING_IN: self._drive_in,
         }
 
@@ -424,24 +438,34 @@ class TakeJunction(Pab):
     def _change_modes(self, ctx):
         """Rotation in position, front module in PWM; a turn presses its clamped
         parts again, and keeps the server's record only if it holds here."""
-        if not self._carried_facts(ctx.guards, ctx.feed.latest()):
+        if self._carried_facts(ctx.guards, ctx.feed.latest()):
+            self.past = self.carried         # cancelled again, the same record stands
+        else:
             self.carried = None
         ctx.prims.change_control_mode('rotation', 'position')
         ctx.prims.change_control_mode('front_tilt', 'pwm')
         if self.turning:
             _press_what_is_clamped(ctx)
 
+    def _bring_rear(self, ctx):
+        """:func:`_bring_rear`, then the record that the rear came through."""
+        _bring_rear(ctx)
+        now = ctx.feed.latest().odometry
+        self.past = PastCorner('rear_through', now, now)
+
     def _drive_in(self, ctx):
         """Drive on ``drive_in_mm`` so the rear module leaves the corner too;
-        resumed (:attr:`carried`), only what is left of that drive, nothing
-        when less than the drive's tolerance is."""
+        resumed in it (:attr:`carried`), only what is left of that drive,
+        nothing when less than the drive's tolerance is."""
         now = ctx.feed.latest().odometry
-        record = self.carried or DriveIn(now, now + float(ctx.guards.row('turn')['drive_in_mm']), False)
-        self.drive_in = record._replace(done=False)
-        if record.end_mm - now > float(ctx.guards.drive['tolerance']):
-            _drive_by(ctx, 'drive into the new pipe', record.end_mm - now)
-        # where the wheels stopped: a few mm past the planned end (110 mm twin: +8)
-        self.drive_in = record._replace(end_mm=max(record.end_mm, ctx.feed.latest().odometry), done=True)
+        resumed = self.carried is not None and self.carried.fact == 'driving_in'
+        start, end = ((self.carried.from_mm, self.carried.to_mm) if resumed
+                      else (now, now + float(ctx.guards.row('turn')['drive_in_mm'])))
+        self.past = PastCorner('driving_in', start, end)
+        if end - now > float(ctx.guards.drive['tolerance']):
+            _drive_by(ctx, 'drive into the new pipe', end - now)
+        # to where the wheels stopped: a few mm past the planned end (110 mm twin: +8)
+        self.past = PastCorner('driven_in', start, max(end, ctx.feed.latest().odometry))
 
     def _search(self, ctx):
         """Drive until the junction is sensed, or JunctionMissing after the goal's distance."""
@@ -490,9 +514,8 @@ class TakeJunction(Pab):
 
     def summary(self, ctx):
         if self.carried is not None:
-            return ('%s %s: resumed the drive into the new pipe (ended %s), %d motion primitives, ended clamped'
-                    % (self.kind, self.direction, 'after it' if self.carried.done else 'in it',
-                       len(ctx.prims.executed)))
+            return ('%s %s: resumed past the corner (%s), %d motion primitives, ended clamped'
+                    % (self.kind, self.direction, RESUMED_TEXT[self.carried.fact], len(ctx.prims.executed)))
         if math.isnan(self.junction_odometry):
             return ('%s %s: resumed where the robot stood in the corner, %d motion primitives, ended clamped'
                     % (self.kind, self.direction, len(ctx.prims.executed)))
