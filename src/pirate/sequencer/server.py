@@ -16,8 +16,8 @@ ActionServer. Rules:
 - every primitive a goal runs is kept in :attr:`trace` (robot times and
   outcome) for the result, because feedback may be lost on the way;
 - what a goal that did not succeed leaves unfinished (``Pab.unfinished``:
-  a turn cancelled while driving into the new pipe, which nothing sensed
-  tells from a robot before a bend) is handed to the same goal re-sent
+  a turn cancelled once its rear came round, which nothing sensed tells
+  from a robot in a straight pipe) is handed to the same goal re-sent
   next, and dropped when any other goal runs.
 """
 import collections

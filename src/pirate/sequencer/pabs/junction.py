@@ -427,7 +427,7 @@ class TakeJunction(Pab):
             STEERING_FRONT: self._steer_front,
             CLAMPING_AT_CORNER: _clamp_at_corner,
             SWINGING_MIDDLE: _swing_middle,
-            BRINGING_REAR: self._bring_rear,
+            BRINGING_REAR: self._bring_rear_and_record,
             DRIVING_IN: self._drive_in,
         }
 
@@ -447,7 +447,7 @@ class TakeJunction(Pab):
         if self.turning:
             _press_what_is_clamped(ctx)
 
-    def _bring_rear(self, ctx):
+    def _bring_rear_and_record(self, ctx):
         """:func:`_bring_rear`, then the record that the rear came through."""
         _bring_rear(ctx)
         now = ctx.feed.latest().odometry
