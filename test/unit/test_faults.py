@@ -18,7 +18,7 @@ from pirate.panel.mapper import Mapper
 from pirate.robot import commands, tables, units
 from pirate.sequencer.guards import BadConfig, GuardBook, load_files
 from pirate.sequencer.pabs.base import PabFailed
-from pirate.sequencer.pabs.drive import Drive, Progress as Drive_progress
+from pirate.sequencer.pabs.drive import Drive, Progress as DriveProgress
 from pirate.sim.harness import SimHarness
 from pirate.state.assembler import BadState, StateAssembler
 from pirate.state.feed import RobotFeed, RobotView, TimedOut
@@ -306,10 +306,10 @@ def test_the_drive_watchdogs_first_window_covers_the_commands_way_to_the_wheels(
     drive = GuardBook(*load_files()).common['drive']
     first = drive['no_progress_s'] + drive['no_progress_start_s']
     at = lambda stamp, mm: RobotView({}, math.pi / 2, mm, 0.0, stamp, {})    # noqa: E731
-    progress = Drive_progress(drive, at(10.0, 50.0))
+    progress = DriveProgress(drive, at(10.0, 50.0))
     assert progress.check(at(10.0 + first - 0.05, 48.5))          # 1.5 mm: not yet progress, still in time
     with pytest.raises(PabFailed, match='no odometry progress'):
-        Drive_progress(drive, at(10.0, 50.0)).check(at(10.0 + first + 0.05, 48.5))
+        DriveProgress(drive, at(10.0, 50.0)).check(at(10.0 + first + 0.05, 48.5))
     assert progress.check(at(10.0 + first, 47.5))                 # progress: a new mark
     with pytest.raises(PabFailed, match='no odometry progress'):
         progress.check(at(10.0 + first + drive['no_progress_s'] + 0.05, 47.0))

@@ -146,29 +146,24 @@ def classify_part(guards, part, angles, efforts, orientation=None):
     and the rear's roll ``orientation`` (rad; None: upright guards). Each
     part is judged by the rows of its own roll (:func:`part_roll`): the
     rotation can put the front on a side while the rear is not."""
-    roll = part_roll(part, angles, orientation)
-    if _holds(guards, guards.pair(full_row(guards, roll), part), angles, efforts):
+    roll, margin = part_roll(part, angles, orientation), clamp_margin_rad(guards)
+    if clamped(guards, guards.pair(full_row(guards, roll), part), angles, efforts, margin):
         return FULL
     for row in CUSTOM_ROWS[part]:
-        if guards.has(row) and _holds(guards, guards.pair(row_at(guards, row, roll), part), angles, efforts):
+        if guards.has(row) and clamped(guards, guards.pair(row_at(guards, row, roll), part), angles, efforts, margin):
             return CUSTOM
     if guards.pair('unclamp', part).opened(angles, free_margin_rad(guards)) and not pressing(guards, part, efforts):
         return FREE
     return PARTLY
 
 
-def clamped(guards, pair, angles, efforts):
-    """True when the clamp ``pair`` holds: its angle guards AND its outer spring on
-    the wall. Exact: the clamp primitive's guard."""
-    return pair.closed(angles) and presses_wall(guards, pair.outer, efforts)
-
-
-def _holds(guards, pair, angles, efforts):
-    """:func:`clamped` for the classification: the angle guards less
-    ``clamp_margin_rad``, so a clamp that settles back past its guard while its
-    spring presses the wall does not flip to "partly clamped"."""
-    margin = clamp_margin_rad(guards)
-    return pair.closed(angles, margin) and presses_wall(guards, pair.outer, efforts)
+def clamped(guards, pair, angles, efforts, margin_rad=0.0):
+    """True when the clamp ``pair`` holds: its angle guards (less ``margin_rad``)
+    AND its outer spring on the wall. Exact (no margin): the clamp primitive's
+    guard; the classification passes ``clamp_margin_rad``, so a clamp that
+    settles back past its guard while its spring presses the wall does not
+    flip to "partly clamped"."""
+    return pair.closed(angles, margin_rad) and presses_wall(guards, pair.outer, efforts)
 
 
 def presses_wall(guards, bend, efforts):

@@ -24,8 +24,9 @@ What a gas-network inspector expects of it (issue 11):
   again only if its front V has not passed the junction (else the mission
   stops, the robot held: a crossing cannot be resumed). A turn whose front
   had turned into the new pipe is re-sent as it is, without a re-clamp: the
-  junction PAB goes on from where the robot senses it is (half round the
-  corner a Clamp Sideways would undo the turn); if the PAB refuses, the
+  junction PAB goes on from where the robot is, by what it senses and, once
+  the rear came round, by the Pirate Server's record of the turn (half round
+  the corner a Clamp Sideways would undo the turn); if the PAB refuses, the
   retry's re-clamp follows. Cancel always ends the mission.
 
 Pure: the robot is an object with ``run(step) -> Report`` (blocking until
