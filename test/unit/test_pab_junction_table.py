@@ -233,18 +233,18 @@ SIDEWAYS_LEFT = dict(CLAMPED, bend_i=-0.65, bend_ii=0.33, bend_iii=0.33, bend_iv
 
 SIDEWAYS = {90: SIDEWAYS_LEFT, 110: dict(CLAMPED, bend_i=-0.9, bend_ii=0.45, bend_iii=0.45, bend_iv=-0.9)}
 #: mm -> the turn row's range (mm/s), measured in the twin (config/guards_<mm>.yaml).
-TURN_SPEEDS = {90: (15, 30), 110: (20, 30)}
+TURN_SPEEDS = {90: (15, 30), 110: (20, 25)}
 
 
 @pytest.mark.parametrize('mm, speed', [(90, 0.0), (90, 15.0), (90, 22.5), (90, 30.0), (110, 0.0), (110, 20.0),
-                                       (110, 30.0)])
+                                       (110, 25.0)])
 @pytest.mark.parametrize('name', [codes.MITRE_BEND, codes.T_JOINT])
 def test_a_turn_takes_a_speed_within_its_rows_range(name, mm, speed):
     assert check(name, codes.LEFT, distance=800.0, speed=speed, robot=view(math.pi, SIDEWAYS[mm]), mm=mm) is None
 
 
 @pytest.mark.parametrize('mm, speed', [(90, 5.0), (90, 14.9), (90, 35.0), (90, 50.0), (90, 170.0), (110, 15.0),
-                                       (110, 50.0)])
+                                       (110, 30.0), (110, 50.0)])
 @pytest.mark.parametrize('name', [codes.MITRE_BEND, codes.T_JOINT])
 def test_a_turn_at_a_speed_outside_its_rows_range_is_refused_with_the_reason(name, mm, speed):
     reason = check(name, codes.LEFT, distance=800.0, speed=speed, robot=view(math.pi, SIDEWAYS[mm]), mm=mm)

@@ -12,7 +12,8 @@ the pipe less a wheel (l sin(beta) = D - D_w); ``drive_in_mm`` is the
 corner's length (one diameter) plus 60 mm. The 110 mm T-joint's wider
 corner needed ``steered_sum_rad``, a lower ``corner_inner_rad`` and a
 longer ``timeout_s`` (checked in the twin: config/guards_110.yaml); the
-slowest speed a turn takes, ``goal_speed_min``, was measured there again.
+slowest and fastest speeds a turn takes, ``goal_speed_min`` and
+``goal_speed_max``, were measured there again.
 """
 import math
 
@@ -25,8 +26,8 @@ from pirate.state.feed import RobotView
 L_M, WHEEL_D_M = 0.09, 0.046      # report 2.4.1.1: l, D_w
 BOOK = GuardBook(*load_files())
 DIAMETER_BOUND = ('steered_rad', 'steered_sum_rad', 'corner_inner_rad', 'drive_in_mm', 'timeout_s')
-#: Measured in the twin in 110 mm as well, not derived: the slowest speed a turn takes there.
-MEASURED_110 = ('goal_speed_min',)
+#: Measured in the twin in 110 mm as well, not derived: the slowest and fastest speeds a turn takes there.
+MEASURED_110 = ('goal_speed_min', 'goal_speed_max')
 #: How far above the straight-pipe bound each sign stays (rad).
 MARGINS = {'steered_rad': 0.5, 'steered_sum_rad': 0.5, 'corner_inner_rad': 0.3}
 
