@@ -109,6 +109,19 @@ def test_no_junction_within_the_distance_aborts_with_junction_missing():
         assert h.server.status() == 'Idle Clamped'                            # it never let go
 
 
+def steps(executed):
+    """The primitives a turn ran, each back-off from an edge and the steering
+    it went on with taken out: how often the front stands at an edge depends
+    on the machine's load (the in-process twin paces to the wall clock)."""
+    out = []
+    for name in executed:
+        if name == 'back off the edge':
+            assert out and out[-1] == 'steer front', executed
+        elif not (name == 'steer front' and out and out[-1] == 'steer front'):
+            out.append(name)
+    return out
+
+
 def clamped_sideways(h, option, mm=90):
     reason, outcome = run_bounded(h, h.goal(codes.CLAMP_SIDEWAYS, mm, option=option))
     assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
@@ -125,7 +138,7 @@ def test_a_turn_left_and_right_ends_in_the_new_pipe(pattern, side, mm):
         del h.feedback[:]
         reason, outcome = run_bounded(h, h.goal(name, mm, option=option, distance=800.0), 120.0)
         assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
-        assert h.prims.executed[:len(TURN)] == TURN          # then Clamp Sideways straightens if it must
+        assert steps(h.prims.executed)[:len(TURN)] == TURN          # then Clamp Sideways straightens if it must
         assert {fb.server_state for fb in h.feedback if fb.pab_state} == {server_state}
         robot_wait(h, 2.0)
         truth = h.ground_truth()
@@ -147,7 +160,7 @@ def test_a_turn_at_the_goals_speed_steers_and_swings_at_it_and_ends_in_the_new_p
         first = len(h.wires['setpoint'].sent)
         reason, outcome = run_bounded(h, h.goal(codes.MITRE_BEND, option=option, distance=800.0, speed=15.0), 120.0)
         assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
-        assert h.prims.executed[:len(TURN)] == TURN
+        assert steps(h.prims.executed)[:len(TURN)] == TURN
         wheels = {sent[SAFE_INDICES['wheels']] for _, sent in h.wires['setpoint'].sent[first:]}
         assert wheels == {0, goal_counts, pull_counts}, wheels
         robot_wait(h, 2.0)

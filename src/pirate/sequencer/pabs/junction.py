@@ -33,7 +33,9 @@ front module along the new pipe (pi/2 - Bend I - Bend II): the front part
 rides the side wall and turns into the opening where there is one. Bend II
 round the corner is the sensed sign of the junction (in a straight pipe
 the walls keep it far below): no opening within the goal's distance ends
-the goal with ``junction_missing``. In the twin the front module meets a
+the goal with ``junction_missing``; wheels that stand on end while it
+steers (an edge the front does not get past) back the front off and it
+steers on (:meth:`TakeJunction._steer_until_round`). In the twin the front module meets a
 mitre's far wall before the front V loses a wall, and the odometry wheel
 (Bend I's) spins free there, so the straight-on sensing sees nothing; the
 steering finds the opening from 210 mm before the bend as from its far
@@ -299,6 +301,7 @@ class TakeJunction(Pab):
         self.start_mm = None
         self.carried = None          # PastCorner: the server's record of this goal's last run
         self.past = None             # PastCorner of this run, once its rear came round
+        self.backed_off = 0          # times the steering backed off an edge
 
     # --- what an unfinished run leaves ------------------------------------------
     def carry_on(self, record):
@@ -491,27 +494,53 @@ class TakeJunction(Pab):
         """Drive with the front V open and its bends toward the turn side, the
         front tilt keeping the front module pointed along the new pipe
         (pi/2 - Bend I - Bend II), until Bend II says the front part has
-        turned into the new pipe; JunctionMissing after the goal's distance.
-        In a straight pipe the walls keep Bend II far below ``steered_rad``."""
+        turned into the new pipe (:meth:`_steer_until_round`);
+        JunctionMissing after the goal's distance. In a straight pipe the
+        walls keep Bend II far below ``steered_rad``."""
         row, prims = ctx.guards.row('turn'), ctx.prims
         distance = ctx.goal.distance or float(ctx.guards.row('junction')['search_mm'])
         limit_s = (float(row['steer_base_s']) + float(row['steer_s_per_mm']) * distance) * _slower(ctx.goal, row)
         start = ctx.feed.latest()
         self.start_mm = start.odometry
         _torque(prims, bend_i=int(row['steer_bend_i']), bend_ii=int(row['steer_bend_ii']))
-        prims.drive_at_velocity(_turn_speed(ctx.goal, row))
         try:
-            view = prims.follow('steer front', lambda v: _tilt_along_the_turn(prims, row, v),
-                                lambda v: _steered(row, v), _steered_text(row), limit_s)
+            view = self._steer_until_round(ctx, row, start.stamp + limit_s)
         except TimedOut:
             self.junction_missing = True
             raise JunctionMissing('no opening toward the %s within %.0f mm (%.0f s of steering; the front did not '
-                                  'turn)' % (self.direction, distance, limit_s))
+                                  'turn%s)' % (self.direction, distance, limit_s, _backed_off_text(self.backed_off)))
         finally:
             prims.drive_at_velocity(0.0)
             prims.move_module('front_tilt', 0)
         self.steered = view
         self.junction_odometry = view.odometry - start.odometry
+
+    def _steer_until_round(self, ctx, row, end):
+        """Steer on until the front is round the corner (the view then);
+        TimedOut at robot time ``end``. Wheels that stand ``back_off_after_s``
+        on end say the front has met an edge it does not get past: the far
+        edge of an opening it did not drop into, or the end of the run it
+        rode on past one. It backs off ``back_off_mm`` and steers on: the
+        bends, still toward the turn side, carry the front module further
+        toward the opening while it backs, and it meets the edge again
+        deeper in (twin, 110 mm T-joint entered through its run: the front
+        stood 40 s at the opening's far edge, rode on past and stood at the
+        run's end for the rest of the goal; backed off 40 mm after 8 s it
+        turned into the branch: bench/pab_junction_sweep, notes/issue-10.md
+        "Backing off an edge")."""
+        prims, speed = ctx.prims, _turn_speed(ctx.goal, row)
+        stand_s = float(row['back_off_after_s'])
+        while True:
+            standing = Standing(stand_s)
+            prims.drive_at_velocity(speed)
+            view = prims.follow('steer front', lambda v: _tilt_along_the_turn(prims, row, v),
+                                lambda v: _steered(row, v) or standing.long(v),
+                                '%s (or the wheels standing %g s: back off)' % (_steered_text(row), stand_s),
+                                _left_s(ctx, end))
+            if _steered(row, view):
+                return view
+            self.backed_off += 1
+            _back_off(ctx, row, speed, end)
 
     def summary(self, ctx):
         if self.carried is not None:
@@ -521,8 +550,25 @@ class TakeJunction(Pab):
             return ('%s %s: resumed where the robot stood in the corner, %d motion primitives, ended clamped'
                     % (self.kind, self.direction, len(ctx.prims.executed)))
         why = self.sensor.sensed.why if self.sensor is not None else 'the front turned into the new pipe'
+        why += _backed_off_text(self.backed_off)
         return ('%s %s: junction sensed %.0f mm after the start (%s), %d motion primitives, ended clamped'
                 % (self.kind, self.direction, self.junction_odometry, why, len(ctx.prims.executed)))
+
+
+class Standing:
+    """True once the wheels have stood (|velocity| under STANDSTILL_MM_S,
+    encoders) ``seconds`` robot s on end."""
+
+    def __init__(self, seconds):
+        self.seconds, self.since = seconds, None
+
+    def long(self, view):
+        if abs(view.velocity) >= STANDSTILL_MM_S:
+            self.since = None
+            return False
+        if self.since is None:
+            self.since = view.stamp
+        return view.stamp - self.since >= self.seconds
 
 
 def _first_step(facts):
@@ -672,6 +718,34 @@ def _steered_text(row):
     if 'steered_sum_rad' in row:
         text += ' or bend_i + bend_ii >= %.2f' % float(row['steered_sum_rad'])
     return text
+
+
+def _left_s(ctx, end):
+    """Robot s left until ``end``."""
+    return max(end - ctx.feed.latest().stamp, 0.0)
+
+
+def _back_off(ctx, row, speed, end):
+    """Drive back ``back_off_mm`` of odometry at ``speed``, the front tilt still
+    along the turn. A back-off that stalls ends at its own time bound and the
+    steering goes on; TimedOut only at ``end``, the steering's."""
+    prims, back_mm = ctx.prims, float(row['back_off_mm'])
+    at = ctx.feed.latest().odometry
+    bound = min(_time_bound(ctx, back_mm, speed), _left_s(ctx, end))
+    prims.drive_at_velocity(-speed)
+    try:
+        prims.follow('back off the edge', lambda v: _tilt_along_the_turn(prims, row, v),
+                     lambda v: v.odometry <= at - back_mm, 'odometry -%.0f mm' % back_mm, bound)
+    except TimedOut:
+        if _left_s(ctx, end) <= 0.0:
+            raise
+    finally:
+        prims.drive_at_velocity(0.0)
+
+
+def _backed_off_text(times):
+    """What a result says of the edges the steering backed off ('' for none)."""
+    return '; backed off an edge %d time%s' % (times, '' if times == 1 else 's') if times else ''
 
 
 def _clamp_at_corner(ctx):
