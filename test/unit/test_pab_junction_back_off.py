@@ -101,6 +101,7 @@ def test_both_turn_rows_say_when_and_how_far_to_back_off(mm):
     turn = row(mm)
     assert 0.0 < float(turn['back_off_after_s']) < float(turn['steer_base_s'])
     assert 0.0 < float(turn['back_off_mm']) < mm
+    assert float(turn['steer_beyond_mm']) > 0.0
 
 
 def test_a_front_that_stands_at_an_edge_backs_off_and_steers_on_into_the_opening():
@@ -140,6 +141,16 @@ def test_an_edge_the_front_never_gets_past_ends_at_the_steerings_own_bound_with_
     assert backs >= 2
     assert 'backed off an edge %d times' % backs in str(missing.value)
     assert world.wheel_log[-1] == 0.0                                  # the wheels stopped
+
+
+def test_with_no_opening_the_steering_stops_its_beyond_distance_past_the_goals_distance():
+    world = EdgeWorld()                                  # a straight pipe: nothing to stand at, nothing to turn into
+    with pytest.raises(jn.JunctionMissing) as missing:
+        steer(world, distance=100.0)
+    last_mm = 100.0 + float(row()['steer_beyond_mm'])
+    assert last_mm < world.odometry <= last_mm + 25.0 * STEP_S          # long before the time bound would end it
+    assert 'no opening toward the left within 100 mm' in str(missing.value)
+    assert world.wheel_log[-1] == 0.0
 
 
 def test_a_back_off_that_cannot_move_ends_at_its_own_bound_and_the_steering_goes_on():

@@ -34,6 +34,7 @@ import time
 import pytest
 
 from pirate.robot import units
+from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.pabs import codes
 from pirate.sequencer.pabs import junction as jn
 from pirate.sim.harness import SimHarness
@@ -174,10 +175,14 @@ def test_a_turn_at_the_goals_speed_steers_and_swings_at_it_and_ends_in_the_new_p
 def test_no_opening_toward_the_turn_aborts_with_junction_missing():
     with SimHarness(speedup=TURN_SPEEDUP, world='straight_90', orientation=math.pi) as h:
         clamped_sideways(h, codes.LEFT)
+        start_mm = h.feed.latest().odometry
         reason, outcome = run_bounded(h, h.goal(codes.MITRE_BEND, option=codes.LEFT, distance=100.0), 120.0)
         assert reason is None and outcome.status == 'aborted', (reason, outcome and outcome.message)
         assert outcome.junction_missing and math.isnan(outcome.junction_odometry)
         assert 'no opening toward the left within 100 mm' in outcome.message
+        # driven the goal's distance and the turn row's allowance for turning round, not on to the time bound
+        beyond_mm = float(GuardBook(*load_files()).for_diameter(90).row('turn')['steer_beyond_mm'])
+        assert h.feed.latest().odometry - start_mm <= 100.0 + beyond_mm + 50.0, h.feed.latest().odometry - start_mm
         sent = h.wires['setpoint'].sent[-1][1]
         assert all(sent[i] == 0 for i in SAFE_INDICES.values()), sent        # the safe hold
 

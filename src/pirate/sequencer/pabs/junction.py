@@ -494,9 +494,11 @@ class TakeJunction(Pab):
         """Drive with the front V open and its bends toward the turn side, the
         front tilt keeping the front module pointed along the new pipe
         (pi/2 - Bend I - Bend II), until Bend II says the front part has
-        turned into the new pipe (:meth:`_steer_until_round`);
-        JunctionMissing after the goal's distance. In a straight pipe the
-        walls keep Bend II far below ``steered_rad``."""
+        turned into the new pipe (:meth:`_steer_until_round`). In a straight
+        pipe the walls keep Bend II far below ``steered_rad``: JunctionMissing
+        once the odometry is ``steer_beyond_mm`` past the goal's distance (the
+        front turns round the corner that far after it reaches the opening),
+        or after the steering's time bound."""
         row, prims = ctx.guards.row('turn'), ctx.prims
         distance = ctx.goal.distance or float(ctx.guards.row('junction')['search_mm'])
         limit_s = (float(row['steer_base_s']) + float(row['steer_s_per_mm']) * distance) * _slower(ctx.goal, row)
@@ -504,41 +506,49 @@ class TakeJunction(Pab):
         self.start_mm = start.odometry
         _torque(prims, bend_i=int(row['steer_bend_i']), bend_ii=int(row['steer_bend_ii']))
         try:
-            view = self._steer_until_round(ctx, row, start.stamp + limit_s)
+            view = self._steer_until_round(ctx, row, start.stamp + limit_s,
+                                           start.odometry + distance + float(row['steer_beyond_mm']))
         except TimedOut:
-            self.junction_missing = True
-            raise JunctionMissing('no opening toward the %s within %.0f mm (%.0f s of steering; the front did not '
-                                  'turn%s)' % (self.direction, distance, limit_s, _backed_off_text(self.backed_off)))
+            view = None
         finally:
             prims.drive_at_velocity(0.0)
             prims.move_module('front_tilt', 0)
+        if view is None:
+            self.junction_missing = True
+            last = ctx.feed.latest()
+            raise JunctionMissing('no opening toward the %s within %.0f mm (odometry %+.0f mm in %.0f s of steering; '
+                                  'the front did not turn%s)' % (self.direction, distance, last.odometry - start.odometry,
+                                                                 last.stamp - start.stamp,
+                                                                 _backed_off_text(self.backed_off)))
         self.steered = view
         self.junction_odometry = view.odometry - start.odometry
 
-    def _steer_until_round(self, ctx, row, end):
-        """Steer on until the front is round the corner (the view then);
-        TimedOut at robot time ``end``. Wheels that stand ``back_off_after_s``
-        on end say the front has met an edge it does not get past: the far
-        edge of an opening it did not drop into, or the end of the run it
-        rode on past one. It backs off ``back_off_mm`` and steers on: the
-        bends, still toward the turn side, carry the front module further
-        toward the opening while it backs, and it meets the edge again
-        deeper in (twin, 110 mm T-joint entered through its run: the front
-        stood 40 s at the opening's far edge, rode on past and stood at the
-        run's end for the rest of the goal; backed off 40 mm after 8 s it
-        turned into the branch: bench/pab_junction_sweep, notes/issue-10.md
-        "Backing off an edge")."""
+    def _steer_until_round(self, ctx, row, end, last_mm):
+        """Steer on until the front is round the corner (the view then), or
+        None once the odometry passes ``last_mm``; TimedOut at robot time
+        ``end``. Wheels that stand ``back_off_after_s`` on end say the front
+        has met an edge it does not get past: the far edge of an opening it
+        did not drop into, or the end of the run it rode on past one. It
+        backs off ``back_off_mm`` and steers on: the bends, still toward the
+        turn side, carry the front module further toward the opening while
+        it backs, and it meets the edge again deeper in (twin, 110 mm T-joint
+        entered through its run: the front stood 40 s at the opening's far
+        edge, rode on past and stood at the run's end for the rest of the
+        goal; backed off 40 mm after 8 s it turned into the branch:
+        bench/pab_junction_sweep, notes/issue-10.md "Backing off an edge")."""
         prims, speed = ctx.prims, _turn_speed(ctx.goal, row)
         stand_s = float(row['back_off_after_s'])
         while True:
             standing = Standing(stand_s)
             prims.drive_at_velocity(speed)
             view = prims.follow('steer front', lambda v: _tilt_along_the_turn(prims, row, v),
-                                lambda v: _steered(row, v) or standing.long(v),
-                                '%s (or the wheels standing %g s: back off)' % (_steered_text(row), stand_s),
-                                _left_s(ctx, end))
+                                lambda v: _steered(row, v) or standing.long(v) or v.odometry > last_mm,
+                                '%s (or the wheels standing %g s: back off; or odometry past %.0f mm)'
+                                % (_steered_text(row), stand_s, last_mm), _left_s(ctx, end))
             if _steered(row, view):
                 return view
+            if view.odometry > last_mm:
+                return None
             self.backed_off += 1
             _back_off(ctx, row, speed, end)
 
