@@ -1,7 +1,8 @@
-"""A turn's steering backs off an edge its front stands at (issue 10.5).
+"""A turn's steering levels the front part and backs off an edge its front stands at (issue 10.5).
 
-The steering drives the front toward the opening until Bend II says it is
-round the corner. Wheels standing ``back_off_after_s`` (the turn row) say
+The steering first rotates the open front part onto the side's roll, then
+drives the front toward the opening until Bend II says it is round the
+corner. Wheels standing ``back_off_after_s`` (the turn row) say
 the front met an edge it does not get past; it backs off ``back_off_mm``
 of odometry and steers on, within the steering's own time bound. Here a
 small kinematic stand-in replaces the twin: the wheels move the odometry
@@ -33,16 +34,16 @@ class EdgeWorld(object):
     stand), and backward where ``back_stops_mm`` is set (stands there too).
     After ``turns_after`` back-offs the front turns round on reaching the edge."""
 
-    def __init__(self, edge_mm=math.inf, turns_after=math.inf, back_stops_mm=-math.inf):
-        self.edge_mm, self.turns_after, self.back_stops_mm = edge_mm, turns_after, back_stops_mm
+    def __init__(self, edge_mm=math.inf, turns_after=math.inf, back_stops_mm=-math.inf, roll=math.pi):
+        self.edge_mm, self.turns_after, self.back_stops_mm, self.roll = edge_mm, turns_after, back_stops_mm, roll
         self.wheels, self.odometry, self.stamp, self.backed = 0.0, 0.0, 0.0, 0
-        self.ran, self.wheel_log, self.backed_to_mm = [], [], math.inf
+        self.ran, self.wheel_log, self.backed_to_mm, self.rotated = [], [], math.inf, []
         self.view = self._view(False)
 
     def _view(self, velocity):
         round_ = self.backed >= self.turns_after and self.odometry >= self.edge_mm
         angles = dict(FLAT, bend_ii=2.0 if round_ else FLAT['bend_ii'])
-        return RobotView(angles, math.pi, self.odometry, velocity, self.stamp, {})
+        return RobotView(angles, self.roll, self.odometry, velocity, self.stamp, {})
 
     def _step(self):
         moved = self.wheels * STEP_S
@@ -72,6 +73,10 @@ class EdgeWorld(object):
         self.wheels = mm_s
         self.wheel_log.append(mm_s)
 
+    def rotate(self, target_rad, name='rotate'):
+        self.ran.append((name, self.stamp))
+        self.rotated.append((target_rad, list(self.wheel_log)))
+
     def follow(self, name, act, done, text, timeout):
         self.ran.append((name, self.stamp))
         end = self.stamp + timeout
@@ -83,10 +88,10 @@ class EdgeWorld(object):
         return self.view
 
 
-def steer(world, mm=110, speed=0.0, distance=800.0):
-    """Run a LEFT mitre's steering step in ``world``: the PAB, and the robot s its steering may take."""
+def steer(world, mm=110, speed=0.0, distance=800.0, option=codes.LEFT):
+    """Run a mitre's steering step (LEFT unless ``option`` says) in ``world``: the PAB."""
     guards = BOOK.for_diameter(mm)
-    goal = Goal(codes.MITRE_BEND, codes.LEFT, distance, speed, mm)
+    goal = Goal(codes.MITRE_BEND, option, distance, speed, mm)
     pab = PABS[codes.MITRE_BEND][1].for_goal(goal)
     pab.actions()[jn.STEERING_FRONT](PabContext(world, world, guards, goal, lambda *state: None))
     return pab
@@ -108,10 +113,10 @@ def test_a_front_that_stands_at_an_edge_backs_off_and_steers_on_into_the_opening
     world = EdgeWorld(edge_mm=300.0, turns_after=1)
     pab = steer(world)
     stand_s = float(row()['back_off_after_s'])
-    assert [name for name, _ in world.ran] == ['steer front', 'back off the edge', 'steer front']
+    assert [name for name, _ in world.ran] == ['level the front', 'steer front', 'back off the edge', 'steer front']
     assert world.wheel_log == [25.0, -25.0, 0.0, 25.0, 0.0]       # steer, back, stop, steer, stop
     reached_edge_s = 300.0 / 25.0
-    backed_at = world.ran[1][1]
+    backed_at = world.ran[2][1]
     assert backed_at == pytest.approx(reached_edge_s + stand_s, abs=2 * STEP_S)   # stood back_off_after_s first
     assert pab.backed_off == 1 and pab.steered is not None
     assert pab.junction_odometry == pytest.approx(300.0)
@@ -126,7 +131,7 @@ def test_the_back_off_drives_back_its_distance_of_odometry():
 def test_wheels_that_never_stand_never_back_off():
     world = EdgeWorld(edge_mm=300.0, turns_after=0)     # the front turns round at the edge at once
     pab = steer(world)
-    assert [name for name, _ in world.ran] == ['steer front']
+    assert [name for name, _ in world.ran] == ['level the front', 'steer front']
     assert pab.backed_off == 0 and -25.0 not in world.wheel_log
 
 
@@ -158,7 +163,21 @@ def test_a_back_off_that_cannot_move_ends_at_its_own_bound_and_the_steering_goes
     with pytest.raises(jn.JunctionMissing):
         steer(world)
     names = [name for name, _ in world.ran]
-    assert names[:4] == ['steer front', 'back off the edge', 'steer front', 'back off the edge']
+    assert names[:5] == ['level the front', 'steer front', 'back off the edge', 'steer front', 'back off the edge']
+
+
+@pytest.mark.parametrize('option, roll, rotation', [
+    (codes.LEFT, 3.05, 3.05 - math.pi),          # the twin's rear after Clamp Sideways LEFT from 60 deg
+    (codes.LEFT, -3.10, math.pi - 3.10),         # the same side, the roll read past pi
+    (codes.RIGHT, 0.05, 0.05),
+    (codes.RIGHT, -0.04, -0.04),
+])
+def test_the_front_part_is_levelled_on_the_turns_side_before_the_wheels_turn(option, roll, rotation):
+    world = EdgeWorld(edge_mm=300.0, turns_after=0, roll=roll)
+    steer(world, option=option)
+    (target, wheels_before), = world.rotated
+    assert target == pytest.approx(rotation)          # front roll = rear roll - rotation = the side's
+    assert wheels_before == [] and world.ran[0][0] == 'level the front'
 
 
 def test_standing_counts_only_wheels_still_on_end():

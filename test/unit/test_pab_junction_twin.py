@@ -46,7 +46,7 @@ SPEEDUP = 20.0
 APEX_WHEELS = {23, 26}
 CROSSING = ['look for the junction', 'stop wheels', 'unclamp front partial', 'drive front across', 'stop wheels',
             'clamp front', 'unclamp rear partial', 'drive rear across', 'stop wheels', 'clamp rear']
-TURN = ['move front turn', 'unclamp front partial', 'steer front', 'clamp front at the corner', 'swing the middle',
+TURN = ['move front turn', 'unclamp front partial', 'level the front', 'steer front', 'clamp front at the corner', 'swing the middle',
         'bring the rear through', 'clamp rear', 'clamp front', 'drive into the new pipe', 'stop wheels']
 TURN_SPEEDUP = 10.0
 #: The joints between the modules and the rear module's, front to rear (ground truth bodies).
