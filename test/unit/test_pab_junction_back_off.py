@@ -1,7 +1,7 @@
 """A turn's steering levels the front part and backs off an edge its front stands at (issue 10.5).
 
-The steering first rotates the open front part onto the side's roll, then
-drives the front toward the opening until Bend II says it is round the
+The steering first rotates the open front part onto the side's roll (110
+mm, the row's ``level_front``), then drives the front toward the opening until Bend II says it is round the
 corner. Wheels standing ``back_off_after_s`` (the turn row) say
 the front met an edge it does not get past; it backs off ``back_off_mm``
 of odometry and steers on, within the steering's own time bound. Here a
@@ -178,6 +178,12 @@ def test_the_front_part_is_levelled_on_the_turns_side_before_the_wheels_turn(opt
     (target, wheels_before), = world.rotated
     assert target == pytest.approx(rotation)          # front roll = rear roll - rotation = the side's
     assert wheels_before == [] and world.ran[0][0] == 'level the front'
+
+
+def test_in_90_mm_the_front_part_is_not_levelled():
+    world = EdgeWorld(edge_mm=300.0, turns_after=0, roll=3.05)
+    steer(world, mm=90)
+    assert world.rotated == [] and world.ran[0][0] == 'steer front'
 
 
 def test_standing_counts_only_wheels_still_on_end():

@@ -26,8 +26,9 @@ from pirate.state.feed import RobotView
 L_M, WHEEL_D_M = 0.09, 0.046      # report 2.4.1.1: l, D_w
 BOOK = GuardBook(*load_files())
 DIAMETER_BOUND = ('steered_rad', 'steered_sum_rad', 'corner_inner_rad', 'drive_in_mm', 'timeout_s')
-#: Measured in the twin in 110 mm as well, not derived: the slowest and fastest speeds a turn takes there.
-MEASURED_110 = ('goal_speed_min', 'goal_speed_max')
+#: Measured in the twin in 110 mm as well, not derived: the slowest and fastest speeds a turn takes there,
+#: and whether the front part is levelled before it steers.
+MEASURED_110 = ('goal_speed_min', 'goal_speed_max', 'level_front')
 #: How far above the straight-pipe bound each sign stays (rad).
 MARGINS = {'steered_rad': 0.5, 'steered_sum_rad': 0.5, 'corner_inner_rad': 0.3}
 

@@ -28,7 +28,7 @@ tell them apart and takes them all with the same steps), in the robot's
 own frame: clamped sideways toward the turn, the new pipe lies on the tilt-positive side of
 the V's plane, which is horizontal (gravity does not load the steering).
 Lift the front module toward the turn, open the front V, level the front
-part on the side (the rotation: :func:`_level_front`), then drive with
+part on the side in 110 mm (the rotation: :func:`_level_front`), then drive with
 Bend I / II in torque toward the turn side while the front tilt keeps the
 front module along the new pipe (pi/2 - Bend I - Bend II): the front part
 rides the side wall and turns into the opening where there is one. Bend II
@@ -492,8 +492,8 @@ class TakeJunction(Pab):
         self.junction_odometry = self.sensor.sensed.odometry - self.start_mm
 
     def _steer_front(self, ctx):
-        """Level the front part on the side (:func:`_level_front`), then
-        drive with the front V open and its bends toward the turn side, the
+        """Level the front part on the side where the row says
+        (``level_front``, :func:`_level_front`), then drive with the front V open and its bends toward the turn side, the
         front tilt keeping the front module pointed along the new pipe
         (pi/2 - Bend I - Bend II), until Bend II says the front part has
         turned into the new pipe (:meth:`_steer_until_round`). In a straight
@@ -504,7 +504,8 @@ class TakeJunction(Pab):
         row, prims = ctx.guards.row('turn'), ctx.prims
         distance = ctx.goal.distance or float(ctx.guards.row('junction')['search_mm'])
         limit_s = (float(row['steer_base_s']) + float(row['steer_s_per_mm']) * distance) * _slower(ctx.goal, row)
-        _level_front(ctx, self._target())
+        if row.get('level_front'):
+            _level_front(ctx, self._target())
         start = ctx.feed.latest()
         self.start_mm = start.odometry
         _torque(prims, bend_i=int(row['steer_bend_i']), bend_ii=int(row['steer_bend_ii']))
@@ -743,7 +744,10 @@ def _level_front(ctx, target):
     entered through its run, LEFT from 60 and 73 deg: rear 3.05 rad, rotation
     +0.036 to +0.044) kept to the wall away from the branch, rode past the
     opening and backing off did not help; levelled first, every approach
-    roll turned in (notes/issue-10.md "Levelling the front")."""
+    roll turned in. Only where the turn row says ``level_front``: in 90 mm,
+    where every approach roll turned in without it, levelling made the pull
+    of the rear slip and the turn end 30 mm short in 2 of 3 probes
+    (notes/issue-10.md "Levelling the front")."""
     view = ctx.feed.latest()
     ctx.prims.rotate(math.remainder(view.orientation - target, 2 * math.pi), 'level the front')
 
