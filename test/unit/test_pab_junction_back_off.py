@@ -1,7 +1,8 @@
 """A turn's steering levels the front part and backs off an edge its front stands at (issue 10.5).
 
-The steering first rotates the open front part onto the side's roll (110
-mm, the row's ``level_front``), then drives the front toward the opening until Bend II says it is round the
+A turn's start rotates the open front part onto the side's roll (110 mm,
+the row's ``level_front``; a resumed steering does not). The steering then
+drives the front toward the opening until Bend II says it is round the
 corner. Wheels standing ``back_off_after_s`` (the turn row) say
 the front met an edge it does not get past; it backs off ``back_off_mm``
 of odometry and steers on, within the steering's own time bound. Here a
@@ -77,6 +78,9 @@ class EdgeWorld(object):
         self.ran.append((name, self.stamp))
         self.rotated.append((target_rad, list(self.wheel_log)))
 
+    def unclamp(self, part, partial=False):
+        self.ran.append(('unclamp %s%s' % (part, ' partial' if partial else ''), self.stamp))
+
     def follow(self, name, act, done, text, timeout):
         self.ran.append((name, self.stamp))
         end = self.stamp + timeout
@@ -88,13 +92,18 @@ class EdgeWorld(object):
         return self.view
 
 
-def steer(world, mm=110, speed=0.0, distance=800.0, option=codes.LEFT):
-    """Run a mitre's steering step (LEFT unless ``option`` says) in ``world``: the PAB."""
+def steer(world, mm=110, speed=0.0, distance=800.0, option=codes.LEFT, steps=(jn.STEERING_FRONT,)):
+    """Run a mitre's ``steps`` (LEFT unless ``option`` says; by default the
+    steering alone, as a resumed turn enters it) in ``world``: the PAB."""
     guards = BOOK.for_diameter(mm)
     goal = Goal(codes.MITRE_BEND, option, distance, speed, mm)
     pab = PABS[codes.MITRE_BEND][1].for_goal(goal)
-    pab.actions()[jn.STEERING_FRONT](PabContext(world, world, guards, goal, lambda *state: None))
+    for step in steps:
+        pab.actions()[step](PabContext(world, world, guards, goal, lambda *state: None))
     return pab
+
+
+FROM_THE_START = (jn.UNCLAMPING_FRONT, jn.STEERING_FRONT)
 
 
 def row(mm=110):
@@ -113,10 +122,10 @@ def test_a_front_that_stands_at_an_edge_backs_off_and_steers_on_into_the_opening
     world = EdgeWorld(edge_mm=300.0, turns_after=1)
     pab = steer(world)
     stand_s = float(row()['back_off_after_s'])
-    assert [name for name, _ in world.ran] == ['level the front', 'steer front', 'back off the edge', 'steer front']
+    assert [name for name, _ in world.ran] == ['steer front', 'back off the edge', 'steer front']
     assert world.wheel_log == [25.0, -25.0, 0.0, 25.0, 0.0]       # steer, back, stop, steer, stop
     reached_edge_s = 300.0 / 25.0
-    backed_at = world.ran[2][1]
+    backed_at = world.ran[1][1]
     assert backed_at == pytest.approx(reached_edge_s + stand_s, abs=2 * STEP_S)   # stood back_off_after_s first
     assert pab.backed_off == 1 and pab.steered is not None
     assert pab.junction_odometry == pytest.approx(300.0)
@@ -131,7 +140,7 @@ def test_the_back_off_drives_back_its_distance_of_odometry():
 def test_wheels_that_never_stand_never_back_off():
     world = EdgeWorld(edge_mm=300.0, turns_after=0)     # the front turns round at the edge at once
     pab = steer(world)
-    assert [name for name, _ in world.ran] == ['level the front', 'steer front']
+    assert [name for name, _ in world.ran] == ['steer front']
     assert pab.backed_off == 0 and -25.0 not in world.wheel_log
 
 
@@ -163,7 +172,7 @@ def test_a_back_off_that_cannot_move_ends_at_its_own_bound_and_the_steering_goes
     with pytest.raises(jn.JunctionMissing):
         steer(world)
     names = [name for name, _ in world.ran]
-    assert names[:5] == ['level the front', 'steer front', 'back off the edge', 'steer front', 'back off the edge']
+    assert names[:4] == ['steer front', 'back off the edge', 'steer front', 'back off the edge']
 
 
 @pytest.mark.parametrize('option, roll, rotation', [
@@ -174,16 +183,24 @@ def test_a_back_off_that_cannot_move_ends_at_its_own_bound_and_the_steering_goes
 ])
 def test_the_front_part_is_levelled_on_the_turns_side_before_the_wheels_turn(option, roll, rotation):
     world = EdgeWorld(edge_mm=300.0, turns_after=0, roll=roll)
-    steer(world, option=option)
+    steer(world, option=option, steps=FROM_THE_START)
     (target, wheels_before), = world.rotated
     assert target == pytest.approx(rotation)          # front roll = rear roll - rotation = the side's
-    assert wheels_before == [] and world.ran[0][0] == 'level the front'
+    assert wheels_before == []
+    assert [name for name, _ in world.ran] == ['unclamp front partial', 'level the front', 'steer front']
 
 
 def test_in_90_mm_the_front_part_is_not_levelled():
     world = EdgeWorld(edge_mm=300.0, turns_after=0, roll=3.05)
-    steer(world, mm=90)
-    assert world.rotated == [] and world.ran[0][0] == 'steer front'
+    steer(world, mm=90, steps=FROM_THE_START)
+    assert world.rotated == []
+    assert [name for name, _ in world.ran] == ['unclamp front partial', 'steer front']
+
+
+def test_a_turn_resumed_into_its_steering_does_not_level_the_front_part_again():
+    world = EdgeWorld(edge_mm=300.0, turns_after=0, roll=3.05)
+    steer(world)                                      # entered at STEERING_FRONT, as RESUME_STEERING does
+    assert world.rotated == []
 
 
 def test_standing_counts_only_wheels_still_on_end():
