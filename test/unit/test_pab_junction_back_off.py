@@ -39,7 +39,7 @@ class EdgeWorld(object):
         self.edge_mm, self.turns_after, self.back_stops_mm, self.roll = edge_mm, turns_after, back_stops_mm, roll
         self.wheels, self.odometry, self.stamp, self.backed = 0.0, 0.0, 0.0, 0
         self.ran, self.wheel_log, self.backed_to_mm, self.rotated = [], [], math.inf, []
-        self.view = self._view(False)
+        self.view = self._view(0.0)
 
     def _view(self, velocity):
         round_ = self.backed >= self.turns_after and self.odometry >= self.edge_mm

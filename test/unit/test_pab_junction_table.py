@@ -307,9 +307,6 @@ class _TurnPrims(object):
     def drive_at_velocity(self, mm_s):
         self.wheels = mm_s
 
-    def rotate(self, target_rad, name='rotate'):
-        """Levelling the front part does not set a speed."""
-
     def follow(self, name, act, done, text, timeout):
         self.ran.append((name, self.wheels, timeout))
         return self.view

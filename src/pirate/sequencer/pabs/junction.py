@@ -37,8 +37,8 @@ round the corner is the sensed sign of the junction (in a straight pipe
 the walls keep it far below): no opening within the goal's distance ends
 the goal with ``junction_missing``; wheels that stand on end while it
 steers (an edge the front does not get past) back the front off and it
-steers on (:meth:`TakeJunction._steer_until_round`). In the twin the front module meets a
-mitre's far wall before the front V loses a wall, and the odometry wheel
+steers on (:meth:`TakeJunction._steer_until_round`). In the twin the
+front module meets a mitre's far wall before the front V loses a wall, and the odometry wheel
 (Bend I's) spins free there, so the straight-on sensing sees nothing; the
 steering finds the opening from 210 mm before the bend as from its far
 wall (bench/junction_turn_probe). Then clamp the front at the corner
