@@ -15,7 +15,7 @@ import math
 import pytest
 
 from pirate.sim.harness import SimHarness
-from test_sequencer_sim import run_bounded
+from test_sequencer_sim import assert_ended, run_bounded
 from test_sim_twin_sequencer import assert_clamped_straight, re_adjust_passes, robot_wait
 
 SPEEDUP = 10.0
@@ -28,7 +28,7 @@ APEX_WHEELS = {23, 26}
 def test_simple_clamp_sideways_on_the_twin(mm, option, target):
     with SimHarness(speedup=SPEEDUP, world='straight_%d' % mm, orientation=target) as h:
         reason, outcome = run_bounded(h, h.goal(CLAMP_SIDEWAYS, pipe_diameter=mm, option=option))
-        assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+        assert_ended(reason, outcome)
         assert re_adjust_passes(h.prims.executed) in (0, 1), h.prims.executed
         assert {fb.server_state for fb in h.feedback if fb.pab_state} == {'Clamp Sideways'}   # Fig 4.2
         robot_wait(h, 2.0)
@@ -46,7 +46,7 @@ def test_non_nominal_clamp_straight_in_110_mm_on_the_twin(roll):
     the wall (ground truth)."""
     with SimHarness(speedup=20.0, world='straight_110', orientation=roll) as h:
         reason, outcome = run_bounded(h, h.goal(0, pipe_diameter=110))
-        assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+        assert_ended(reason, outcome)
         executed = h.prims.executed
         assert executed[:4] == ['clamp rear custom', 'rotate front', 'move front first', 'clamp front custom first']
         assert executed[-3:] == ['unclamp front partial', 'rotate front (align)', 'clamp front']
@@ -66,7 +66,7 @@ def test_clamp_sideways_from_off_its_side_on_the_twin(start_deg):
     with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=math.radians(start_deg)) as h:
         robot_wait(h, 1.0)
         reason, outcome = run_bounded(h, h.goal(CLAMP_SIDEWAYS, pipe_diameter=90, option=LEFT))
-        assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+        assert_ended(reason, outcome)
         assert 'clamp front custom first' in h.prims.executed
         robot_wait(h, 2.0)
         truth = h.ground_truth()
@@ -85,7 +85,7 @@ def test_clamp_sideways_in_110_mm_from_off_its_side_on_the_twin():
     with SimHarness(speedup=SPEEDUP, world='straight_110', orientation=math.radians(150)) as h:
         robot_wait(h, 1.0)
         reason, outcome = run_bounded(h, h.goal(CLAMP_SIDEWAYS, pipe_diameter=110, option=RIGHT))
-        assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+        assert_ended(reason, outcome)
         assert 'unclamp front partial' in h.prims.executed and 'rotate front' in h.prims.executed
         robot_wait(h, 2.0)
         truth = h.ground_truth()

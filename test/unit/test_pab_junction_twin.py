@@ -34,12 +34,13 @@ import time
 import pytest
 
 from pirate.robot import units
+from pirate.sequencer import clamp_state
 from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.pabs import codes
 from pirate.sequencer.pabs import junction as jn
 from pirate.sim.harness import SimHarness
 from pirate.world import network
-from test_sequencer_sim import SAFE_INDICES, STRAIGHT, run_bounded
+from test_sequencer_sim import SAFE_INDICES, STRAIGHT, assert_ended, run_bounded
 from test_sim_twin_sequencer import robot_wait
 
 SPEEDUP = 20.0
@@ -74,7 +75,7 @@ def test_the_junction_worlds_load(world):
 
 def clamped_straight(h):
     reason, outcome = run_bounded(h, h.goal(codes.CLAMP_STRAIGHT))
-    assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+    assert_ended(reason, outcome)
 
 
 def test_t_joint_straight_on_crosses_the_open_side_and_ends_clamped_past_it():
@@ -85,7 +86,7 @@ def test_t_joint_straight_on_crosses_the_open_side_and_ends_clamped_past_it():
         clamped_straight(h)
         del h.feedback[:]
         reason, outcome = run_bounded(h, h.goal(codes.T_JOINT, option=codes.STRAIGHT))
-        assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+        assert_ended(reason, outcome)
         assert h.prims.executed == CROSSING
         assert {fb.server_state for fb in h.feedback if fb.pab_state} == {'Taking T-joint'}   # Fig 4.2
         # The front V's apex starts ~310 mm before the hole; odometry also counts the clamped wheels' slip.
@@ -129,7 +130,7 @@ def steps(executed):
 
 def clamped_sideways(h, option, mm=90):
     reason, outcome = run_bounded(h, h.goal(codes.CLAMP_SIDEWAYS, mm, option=option))
-    assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+    assert_ended(reason, outcome)
 
 
 @pytest.mark.parametrize('pattern, side, mm', SIDEWAYS_TURNS)
@@ -142,7 +143,7 @@ def test_a_turn_left_and_right_ends_in_the_new_pipe(pattern, side, mm):
         clamped_sideways(h, option, mm)
         del h.feedback[:]
         reason, outcome = run_bounded(h, h.goal(name, mm, option=option, distance=800.0), 120.0)
-        assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+        assert_ended(reason, outcome)
         assert steps(h.prims.executed)[:len(TURN)] == TURN          # then Clamp Sideways straightens if it must
         assert ('level the front' in h.prims.executed) is (mm == 110)     # config/guards_<mm>.yaml turn level_front
         assert {fb.server_state for fb in h.feedback if fb.pab_state} == {server_state}
@@ -165,7 +166,7 @@ def test_a_turn_at_the_goals_speed_steers_and_swings_at_it_and_ends_in_the_new_p
         clamped_sideways(h, option)
         first = len(h.wires['setpoint'].sent)
         reason, outcome = run_bounded(h, h.goal(codes.MITRE_BEND, option=option, distance=800.0, speed=15.0), 120.0)
-        assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+        assert_ended(reason, outcome)
         assert steps(h.prims.executed)[:len(TURN)] == TURN
         wheels = {sent[SAFE_INDICES['wheels']] for _, sent in h.wires['setpoint'].sent[first:]}
         assert wheels == {0, goal_counts, pull_counts}, wheels
@@ -182,7 +183,7 @@ def test_no_opening_toward_the_turn_aborts_with_junction_missing():
         clamped_sideways(h, codes.LEFT)
         start_mm = h.feed.latest().odometry
         reason, outcome = run_bounded(h, h.goal(codes.MITRE_BEND, option=codes.LEFT, distance=100.0), 120.0)
-        assert reason is None and outcome.status == 'aborted', (reason, outcome and outcome.message)
+        assert_ended(reason, outcome, 'aborted')
         assert outcome.junction_missing and math.isnan(outcome.junction_odometry)
         assert 'no opening toward the left within 100 mm' in outcome.message
         # driven the goal's distance and the turn row's allowance for turning round, not on to the time bound
@@ -263,10 +264,12 @@ def test_a_turn_cancelled_past_the_corner_and_re_sent_goes_on_from_its_record(st
     with clamped_before_the_left_bend() as (h, world, goal):
         guards = h.server.book.for_diameter(90)
         entered_mm, _ = cancelled_in(h, goal, state, cancel_after)
-        what = 'seed %d: cancelled %.1f s into %s, %.0f mm driven' % (
-            seed, cancel_after, state, h.feed.latest().odometry - entered_mm)
+        view = h.feed.latest()
+        what = 'seed %d: cancelled %.1f s into %s, %.0f mm driven; then %s, roll %.3f, efforts %s' % (
+            seed, cancel_after, state, view.odometry - entered_mm, clamp_state.sensed(guards, view),
+            view.orientation, {j: round(e) for j, e in view.efforts.items() if j.startswith('bend')})
         reason, outcome = run_bounded(h, goal, 60.0)
-        assert reason is None and outcome.status == 'succeeded', (what, reason, outcome and outcome.message)
+        assert_ended(reason, outcome, what=what)
         assert 'resumed past the corner (%s)' % resumed in outcome.message, (what, outcome.message)
         assert 'steer front' not in h.prims.executed, (what, h.prims.executed)
         driven_mm = h.feed.latest().odometry - entered_mm
@@ -286,6 +289,6 @@ def test_a_turn_cancelled_half_round_the_corner_and_re_sent_finishes_it():
         if reason and 'Clamp Sideways LEFT first' in reason:      # cancelled as the rear clamped past the corner
             clamped_sideways(h, option)
         else:
-            assert reason is None and outcome.status == 'succeeded', (what, reason, outcome and outcome.message)
+            assert_ended(reason, outcome, what=what)
         truth = assert_through(h, world, sign, what)
         assert abs(math.remainder(truth['roll'] - roll, 2 * math.pi)) <= 0.05, (what, truth['roll'])

@@ -77,6 +77,15 @@ def run_bounded(h, goal, bound=HANG_BOUND_S):
     return result['r']
 
 
+def assert_ended(reason, outcome, status='succeeded', what=''):
+    """Fail with the whole refusal or result message (an assertion's tuple
+    message is cut at 240 characters, which hid the facts of a table that
+    found no way on) unless the goal was accepted and ended ``status``."""
+    if reason is not None or outcome is None or outcome.status != status:
+        pytest.fail('%s%s expected; refused: %s; ended %s: %s' % (
+            what + ': ' if what else '', status, reason, outcome and outcome.status, outcome and outcome.message))
+
+
 def wait_robot(h, condition, robot_s):
     """Wait (wall bound) until ``condition()`` or ``robot_s`` of robot time pass."""
     end = h.robot_time + robot_s

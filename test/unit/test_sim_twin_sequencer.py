@@ -17,7 +17,7 @@ from pirate.sim.chapter6 import (ANY_RE_ADJUST, CLAMP_NOMINAL, CLAMP_NON_NOMINAL
                                  loop_passes, pass_counts)
 from pirate.sim.harness import SimHarness
 from pirate.sim.twin_robot import ROTATIONAL_FRONT
-from test_sequencer_sim import EXPERIMENTS, SAFE_INDICES, STRAIGHT, run_bounded
+from test_sequencer_sim import EXPERIMENTS, SAFE_INDICES, STRAIGHT, assert_ended, run_bounded
 
 SPEEDUP = 30.0
 CLAMP_STRAIGHT = 0
@@ -52,7 +52,7 @@ def re_adjust_passes(executed):
 def test_simple_clamp_straight_on_the_twin(world):
     with SimHarness(speedup=SPEEDUP, world=world, orientation=math.pi / 2) as h:
         reason, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT, pipe_diameter=int(world.rsplit('_', 1)[1])))
-        assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+        assert_ended(reason, outcome)
         assert h.prims.executed == CLAMP_SIMPLE
         assert_clamped_straight(h)
 
@@ -64,7 +64,7 @@ def test_nominal_re_adjust_on_the_twin():
     notes/issue-9.md), ending clamped straight."""
     with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=1.45) as h:
         reason, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT))
-        assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+        assert_ended(reason, outcome)
         assert re_adjust_passes(h.prims.executed) >= 1, h.prims.executed
         assert_clamped_straight(h)
 
@@ -79,7 +79,7 @@ def test_non_nominal_on_the_twin(orientation):
     ending clamped straight."""
     with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=orientation) as h:
         reason, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT), bound=60.0)
-        assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
+        assert_ended(reason, outcome)
         passes = pass_counts(h.prims.executed, CLAMP_NON_NOMINAL, [ANY_RE_ADJUST])
         assert passes is not None and 1 <= passes[0] <= 4, h.prims.executed
         assert_clamped_straight(h)
