@@ -9,6 +9,9 @@ diameter): the wall angles are outer -2 beta, inner beta; the guards stop
 0.05 rad short of them. The front tilt swings the front module (length l)
 toward a wall; its tip, r off its axis, meets the wall at half the chord:
 sin(theta) = (chord / 2 - r) / l; the lift guard stops 0.03 rad short.
+Rolled phi off the side, the chord through the axis is
+2 sqrt(R^2 - ((R - r) cos phi)^2); the sideways clamp row holds (its
+``within_rad``) until that chord lets the V reach the upright guards.
 
 110 mm non-nominal rows (issue 10.3, the report has none): a custom clamp
 must hold down to lying on a side, so each is the sideways guard; the first
@@ -50,11 +53,38 @@ def test_sideways_lift_guard_keeps_the_front_module_off_the_wall(mm):
     assert guard == pytest.approx(theta - 0.03, abs=0.01)
 
 
-@pytest.mark.parametrize('roll, row', [(0.0, 'clamp_sideways'), (math.pi, 'clamp_sideways'),
-                                       (-0.15, 'clamp_sideways'), (2 * math.pi - 0.1, 'clamp_sideways'),
-                                       (0.3, 'clamp'), (math.pi / 2, 'clamp'), (None, 'clamp')])
-def test_the_full_clamp_row_follows_the_roll(roll, row):
-    assert cs.full_row(BOOK.for_diameter(90), roll) == row
+def chord_off_side_m(diameter_m, phi_rad):
+    """The chord through the axis of a robot on its shells rolled ``phi_rad`` off a side."""
+    radius = diameter_m / 2
+    return 2 * math.sqrt(radius ** 2 - ((radius - SHELL_R_M) * math.cos(phi_rad)) ** 2)
+
+
+@pytest.mark.parametrize('mm', [90, 110])
+def test_the_sideways_clamp_row_holds_until_the_upright_guards_come_within_reach(mm):
+    """within_rad is the roll off the side where the V's wall angles first lie
+    0.05 rad past the upright clamp guards: closer to the side only the
+    sideways row can be reached."""
+    guards = BOOK.for_diameter(mm)
+    upright = guards.pair('clamp', 'rear')
+    beta_needed = max(-upright.outer.guard / 2, upright.inner.guard) + 0.05
+    phi = math.acos(math.sqrt((mm / 2000.0) ** 2 - ((WHEEL_D_M + L_M * math.sin(beta_needed)) / 2) ** 2)
+                    / (mm / 2000.0 - SHELL_R_M))
+    within = float(guards.row('clamp_sideways')['within_rad'])
+    assert within == pytest.approx(phi, abs=0.01)
+    for off, reachable in ((within - 0.02, False), (within + 0.02, True)):
+        beta = math.asin((chord_off_side_m(mm / 1000.0, off) - WHEEL_D_M) / L_M)
+        assert (beta >= beta_needed) is reachable, (off, beta)
+    assert within < math.pi / 2 - (guards.region('nominal')[1] - guards.region('nominal')[0]) / 2
+
+
+@pytest.mark.parametrize('mm, roll, row', [
+    (90, 0.0, 'clamp_sideways'), (90, math.pi, 'clamp_sideways'), (90, -0.15, 'clamp_sideways'),
+    (90, 2 * math.pi - 0.1, 'clamp_sideways'), (90, 0.3, 'clamp_sideways'), (90, math.pi - 0.85, 'clamp_sideways'),
+    (90, 0.9, 'clamp'), (90, math.pi / 2, 'clamp'), (90, None, 'clamp'),
+    (110, math.pi - 0.2, 'clamp_sideways'), (110, 1.0, 'clamp_sideways'), (110, 1.1, 'clamp'),
+    (110, math.pi / 2, 'clamp')])
+def test_the_full_clamp_row_follows_the_roll(mm, roll, row):
+    assert cs.full_row(BOOK.for_diameter(mm), roll) == row
 
 
 def test_110_mm_non_nominal_rows_are_derived_from_the_90_mm_ones_and_the_geometry():

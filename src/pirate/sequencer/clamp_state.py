@@ -11,10 +11,10 @@ Per part (front = Bend I/II, rear = Bend IV/III, SPEC 2) the classes are:
   bend's spring presses toward the wall (effort, signed like the clamp
   setpoint of Table 5.2, at least ``spring_clamp_mnm``);
 - ``custom``: the same with a custom clamp guard (Table 5.3) instead;
-- lying on a side (the part's roll within the nominal band around 0 or
-  pi, Fig 4.7; the rear's roll is the IMU's, the front's that less the
-  rotation) the V spans the pipe's chord at the axis height, not its
-  diameter, and meets the walls short of the full guard: there ``full``
+- lying on a side (the part's roll within the row's ``within_rad`` of 0
+  or pi, else the nominal band, Fig 4.7; the rear's roll is the IMU's, the
+  front's that less the rotation) the V spans the pipe's chord through its
+  axis, not the diameter, and meets the walls short of the full guard: there ``full``
   uses the ``clamp_sideways`` row (derived from that chord, see
   config/guards_<mm>.yaml), so a Clamp Sideways reads as clamped and the
   server accepts Drive after it; a custom row with a ``_sideways`` twin
