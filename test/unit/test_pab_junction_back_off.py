@@ -20,6 +20,7 @@ import pytest
 from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.pabs import PABS, codes
 from pirate.sequencer.pabs import junction as jn
+from pirate.sequencer.pabs import turn_motions as motions
 from pirate.sequencer.server import PabContext
 from pirate.state.feed import RobotView, TimedOut
 
@@ -204,7 +205,7 @@ def test_a_turn_resumed_into_its_steering_does_not_level_the_front_part_again():
 
 
 def test_standing_counts_only_wheels_still_on_end():
-    standing = jn.Standing(8.0)
+    standing = motions.Standing(8.0)
     views = [(0.0, 0.0), (5.0, 0.0), (6.0, 20.0), (7.0, 0.0), (14.9, 0.5), (15.0, 0.0)]
     said = [standing.long(RobotView(FLAT, math.pi, 0.0, velocity, stamp, {})) for stamp, velocity in views]
     assert said == [False, False, False, False, False, True]

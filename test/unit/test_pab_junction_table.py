@@ -324,8 +324,8 @@ def turn_phases(speed, mm=90):
     ctx = PabContext(prims, prims, guards, goal, lambda *state: None)
     pab = PABS[codes.MITRE_BEND][1].for_goal(goal)
     pab.actions()[jn.STEERING_FRONT](ctx)
-    jn._swing_middle(ctx)
-    jn._bring_rear(ctx)
+    pab.actions()[jn.SWINGING_MIDDLE](ctx)
+    pab.actions()[jn.BRINGING_REAR](ctx)
     return prims.ran
 
 

@@ -20,7 +20,7 @@ import math
 import pytest
 
 from pirate.sequencer.guards import GuardBook, load_files
-from pirate.sequencer.pabs import junction as jn
+from pirate.sequencer.pabs import turn_motions as motions
 from pirate.state.feed import RobotView
 
 L_M, WHEEL_D_M = 0.09, 0.046      # report 2.4.1.1: l, D_w
@@ -68,5 +68,5 @@ def test_every_other_110_mm_turn_value_is_the_90_mm_one():
 ])
 def test_the_front_is_steered_on_bend_ii_or_in_110_mm_on_bend_i_and_ii(bend_i, bend_ii, steered_90, steered_110):
     view = RobotView(dict(bend_i=bend_i, bend_ii=bend_ii), math.pi, 0.0, 0.0, 1.0, {})
-    assert jn._steered(BOOK.for_diameter(90).row('turn'), view) is steered_90
-    assert jn._steered(BOOK.for_diameter(110).row('turn'), view) is steered_110
+    assert motions.steered(BOOK.for_diameter(90).row('turn'), view) is steered_90
+    assert motions.steered(BOOK.for_diameter(110).row('turn'), view) is steered_110

@@ -28,9 +28,9 @@ tell them apart and takes them all with the same steps), in the robot's
 own frame: clamped sideways toward the turn, the new pipe lies on the tilt-positive side of
 the V's plane, which is horizontal (gravity does not load the steering).
 Lift the front module toward the turn, open the front V, level the front
-part on the side in 110 mm (the rotation: :func:`_level_front`; not when
-resumed), then drive with
-Bend I / II in torque toward the turn side while the front tilt keeps the
+part on the side in 110 mm (the rotation:
+:func:`~pirate.sequencer.pabs.turn_motions.level_front`; not when resumed),
+then drive with Bend I / II in torque toward the turn side while the front tilt keeps the
 front module along the new pipe (pi/2 - Bend I - Bend II): the front part
 rides the side wall and turns into the opening where there is one. Bend II
 round the corner is the sensed sign of the junction (in a straight pipe
@@ -88,14 +88,14 @@ mm). Turns up or down are refused with the reason.
 import collections
 import math
 
-from pirate.robot import units
 from pirate.sequencer import clamp_state
 from pirate.sequencer.junction_sensing import JunctionSensor
 from pirate.sequencer.junctions import TURNS
 from pirate.sequencer.pabs import codes
+from pirate.sequencer.pabs import turn_motions as motions
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, PabFailed, StateMachine, Transition
 from pirate.sequencer.pabs.clamp import Clamp, in_region, region_around
-from pirate.sequencer.pabs.drive import STANDSTILL_MM_S, Progress, speed_problem
+from pirate.sequencer.pabs.drive import Progress, speed_problem
 from pirate.state.feed import TimedOut
 
 CHANGE_MODES = 'change control modes'
@@ -123,7 +123,7 @@ DRIVING_IN = 'driving into the new pipe'
 #: row's angles; read after every step, looked at only from CHANGE_MODES):
 #: toward: the rear's roll within the nominal band (Table 5.4) around the
 #: side the goal turns to; front_round: Bend II round the corner (the front
-#: has turned into the new pipe, :func:`_steered`); middle_round: Bend III
+#: has turned into the new pipe, :func:`~pirate.sequencer.pabs.turn_motions.steered`); middle_round: Bend III
 #: at least ``resume_middle_rad`` (the middle swinging round; a straight
 #: pipe keeps it below); middle_swung: Bend III at least ``swing_rad``;
 #: rear_round: Bend IV at least ``resume_rear_rad`` (the rear V bent toward
@@ -150,7 +150,6 @@ TURN = Guard('turn', lambda f: f.turn)
 ON = Guard('NOT turn', lambda f: not f.turn)
 DONE = Guard('NOT turn AND front clamped AND rear clamped AND straight',
              lambda f: not f.turn and f.front and f.rear and f.straight)
-
 
 def _in_a_corner(f):
     """Some bend says the robot is (partly) round a corner."""
@@ -339,7 +338,7 @@ class TakeJunction(Pab):
         if self.turning and not guards.has('turn'):
             return 'no turn guards for a %d mm pipe (config/guards_%d.yaml has no turn row)' % (
                 guards.pipe_diameter, guards.pipe_diameter)
-        speed = _speed(goal, guards)
+        speed = motions.search_speed(goal, guards)
         # a turn's own measured range first: it says more than the drive's limits
         return (self._check_distance(goal, guards) or (self.turning and _turn_speed_problem(goal, guards))
                 or speed_problem(speed, speed, guards.drive) or self._check_clamp(view, guards))
@@ -421,25 +420,25 @@ class TakeJunction(Pab):
         return {
             CHANGE_MODES: self._change_modes,
             SEARCHING: self._search,
-            STOPPING: _stop_wheels,
+            STOPPING: motions.stop_wheels,
             UNCLAMPING_FRONT: self._unclamp_front,
-            CROSSING_FRONT: lambda ctx: _drive_by(ctx, 'drive front across', _row_mm(ctx, 'cross_front_mm')),
-            CLAMPING_FRONT: lambda ctx: _clamp(ctx, 'front'),
+            CROSSING_FRONT: lambda ctx: motions.drive_across(ctx, 'front'),
+            CLAMPING_FRONT: lambda ctx: motions.clamp_full(ctx, 'front'),
             UNCLAMPING_REAR: lambda ctx: ctx.prims.unclamp('rear', partial=True),
-            CROSSING_REAR: lambda ctx: _drive_by(ctx, 'drive rear across', _row_mm(ctx, 'cross_rear_mm')),
-            CLAMPING_REAR: lambda ctx: _clamp(ctx, 'rear'),
+            CROSSING_REAR: lambda ctx: motions.drive_across(ctx, 'rear'),
+            CLAMPING_REAR: lambda ctx: motions.clamp_full(ctx, 'rear'),
             STRAIGHTENING: lambda ctx: Clamp(self._target()).run(ctx),
             LIFTING_FRONT: lambda ctx: ctx.prims.move_front('move_front_turn'),
             STEERING_FRONT: self._steer_front,
-            CLAMPING_AT_CORNER: _clamp_at_corner,
-            SWINGING_MIDDLE: _swing_middle,
+            CLAMPING_AT_CORNER: motions.clamp_at_corner,
+            SWINGING_MIDDLE: motions.swing_middle,
             BRINGING_REAR: self._bring_rear_and_record,
             DRIVING_IN: self._drive_in,
         }
 
     def _unclamp_front(self, ctx):
         """Open the front V partly; a turn then levels the front part on its
-        side where its row says (``level_front``, :func:`_level_front`). Only
+        side where its row says (``level_front``, :func:`~pirate.sequencer.pabs.turn_motions.level_front`). Only
         here, at a turn's start: a turn resumed into its steering does not
         level (twin, 110 mm T-joint entered through its run, re-sent after a
         cancel while steering: levelled again, the rear's roll drifted to
@@ -447,7 +446,7 @@ class TakeJunction(Pab):
         corner timed out in 6 of 10; notes/issue-10.md "Levelling the front")."""
         ctx.prims.unclamp('front', partial=True)
         if self.turning and ctx.guards.row('turn').get('level_front'):
-            _level_front(ctx, self._target())
+            motions.level_front(ctx, self._target())
 
     def facts(self, ctx):
         found = self.steered is not None or (self.sensor is not None and self.sensor.sensed is not None)
@@ -463,11 +462,11 @@ class TakeJunction(Pab):
         ctx.prims.change_control_mode('rotation', 'position')
         ctx.prims.change_control_mode('front_tilt', 'pwm')
         if self.turning:
-            _press_what_is_clamped(ctx)
+            motions.press_what_is_clamped(ctx)
 
     def _bring_rear_and_record(self, ctx):
-        """:func:`_bring_rear`, then the record that the rear came through."""
-        _bring_rear(ctx)
+        """:func:`~pirate.sequencer.pabs.turn_motions.bring_rear`, then the record that the rear came through."""
+        motions.bring_rear(ctx)
         now = ctx.feed.latest().odometry
         self.past = PastCorner('rear_through', now, now)
 
@@ -481,7 +480,7 @@ class TakeJunction(Pab):
                       else (now, now + float(ctx.guards.row('turn')['drive_in_mm'])))
         self.past = PastCorner('driving_in', start, end)
         if end - now > float(ctx.guards.drive['tolerance']):
-            _drive_by(ctx, 'drive into the new pipe', end - now)
+            motions.drive_by(ctx, 'drive into the new pipe', end - now)
         # to where the wheels stopped: a few mm past the planned end (110 mm twin: +8)
         self.past = PastCorner('driven_in', start, max(end, ctx.feed.latest().odometry))
 
@@ -492,12 +491,12 @@ class TakeJunction(Pab):
         start = ctx.feed.latest()
         self.start_mm, self.sensor = start.odometry, JunctionSensor(ctx.guards, start)
         progress = Progress(ctx.guards.drive, start)
-        speed = _speed(ctx.goal, ctx.guards)
+        speed = motions.search_speed(ctx.goal, ctx.guards)
         ctx.prims.drive_at_velocity(speed)
         view = ctx.prims.wait_for(
             'look for the junction',
             lambda v: progress.check(v) and (self.sensor.update(v) or v.odometry - self.start_mm >= distance),
-            'front V loses its wall, or odometry +%.0f mm' % distance, _time_bound(ctx, distance, speed))
+            'front V loses its wall, or odometry +%.0f mm' % distance, motions.time_bound(ctx, distance, speed))
         if self.sensor.sensed is None:
             self.junction_missing = True
             raise JunctionMissing('no junction within %.0f mm (odometry %.0f mm from the start; the front V '
@@ -515,10 +514,10 @@ class TakeJunction(Pab):
         or after the steering's time bound."""
         row, prims = ctx.guards.row('turn'), ctx.prims
         distance = ctx.goal.distance or float(ctx.guards.row('junction')['search_mm'])
-        limit_s = (float(row['steer_base_s']) + float(row['steer_s_per_mm']) * distance) * _slower(ctx.goal, row)
+        limit_s = (float(row['steer_base_s']) + float(row['steer_s_per_mm']) * distance) * motions.slower(ctx.goal, row)
         start = ctx.feed.latest()
         self.start_mm = start.odometry
-        _torque(prims, bend_i=int(row['steer_bend_i']), bend_ii=int(row['steer_bend_ii']))
+        motions.torque(prims, bend_i=int(row['steer_bend_i']), bend_ii=int(row['steer_bend_ii']))
         try:
             view = self._steer_until_round(ctx, row, start.stamp + limit_s,
                                            start.odometry + distance + float(row['steer_beyond_mm']))
@@ -531,9 +530,9 @@ class TakeJunction(Pab):
             self.junction_missing = True
             last = ctx.feed.latest()
             raise JunctionMissing('no opening toward the %s within %.0f mm (odometry %+.0f mm in %.0f s of steering; '
-                                  'the front did not turn%s)' % (self.direction, distance, last.odometry - start.odometry,
-                                                                 last.stamp - start.stamp,
-                                                                 _backed_off_text(self.backed_off)))
+                                  'the front did not turn%s)' % (
+                                      self.direction, distance, last.odometry - start.odometry,
+                                      last.stamp - start.stamp, motions.backed_off_text(self.backed_off)))
         self.steered = view
         self.junction_odometry = view.odometry - start.odometry
 
@@ -550,21 +549,21 @@ class TakeJunction(Pab):
         edge, rode on past and stood at the run's end for the rest of the
         goal; backed off 40 mm after 8 s it turned into the branch:
         bench/pab_junction_sweep, notes/issue-10.md "Backing off an edge")."""
-        prims, speed = ctx.prims, _turn_speed(ctx.goal, row)
+        prims, speed = ctx.prims, motions.turn_speed(ctx.goal, row)
         stand_s = float(row['back_off_after_s'])
         while True:
-            standing = Standing(stand_s)
+            standing = motions.Standing(stand_s)
             prims.drive_at_velocity(speed)
-            view = prims.follow('steer front', lambda v: _tilt_along_the_turn(prims, row, v),
-                                lambda v: _steered(row, v) or standing.long(v) or v.odometry > last_mm,
+            view = prims.follow('steer front', lambda v: motions.tilt_along_the_turn(prims, row, v),
+                                lambda v: motions.steered(row, v) or standing.long(v) or v.odometry > last_mm,
                                 '%s (or the wheels standing %g s: back off; or odometry past %.0f mm)'
-                                % (_steered_text(row), stand_s, last_mm), _left_s(ctx, end))
-            if _steered(row, view):
+                                % (motions.steered_text(row), stand_s, last_mm), motions.left_s(ctx, end))
+            if motions.steered(row, view):
                 return view
             if view.odometry > last_mm:
                 return None
             self.backed_off += 1
-            _back_off(ctx, row, speed, end)
+            motions.back_off(ctx, row, speed, end)
 
     def summary(self, ctx):
         if self.carried is not None:
@@ -574,25 +573,9 @@ class TakeJunction(Pab):
             return ('%s %s: resumed where the robot stood in the corner, %d motion primitives, ended clamped'
                     % (self.kind, self.direction, len(ctx.prims.executed)))
         why = self.sensor.sensed.why if self.sensor is not None else 'the front turned into the new pipe'
-        why += _backed_off_text(self.backed_off)
+        why += motions.backed_off_text(self.backed_off)
         return ('%s %s: junction sensed %.0f mm after the start (%s), %d motion primitives, ended clamped'
                 % (self.kind, self.direction, self.junction_odometry, why, len(ctx.prims.executed)))
-
-
-class Standing:
-    """True once the wheels have stood (|velocity| under STANDSTILL_MM_S,
-    encoders) ``seconds`` robot s on end."""
-
-    def __init__(self, seconds):
-        self.seconds, self.since = seconds, None
-
-    def long(self, view):
-        if abs(view.velocity) >= STANDSTILL_MM_S:
-            self.since = None
-            return False
-        if self.since is None:
-            self.since = view.stamp
-        return view.stamp - self.since >= self.seconds
 
 
 def _first_step(facts):
@@ -601,26 +584,10 @@ def _first_step(facts):
     return fired[0] if len(fired) == 1 else None
 
 
-def _press_what_is_clamped(ctx):
-    """Each part whose outer spring presses the wall back in torque at its
-    clamp setpoint, the inner bend at 0, as a clamp leaves it. A turn
-    re-sent after a cancel finds its clamped parts held by their worms at
-    PWM 0 (the safe hold); the steps it resumes pull against those clamps
-    (twin: resumed without this, the middle did not swing round and the
-    front did not pull the rear through, 60 s each). From a fresh start it
-    sets what Clamp Sideways left."""
-    guards, view = ctx.guards, ctx.feed.latest()
-    for part in clamp_state.PARTS:
-        roll = clamp_state.part_roll(part, view.angles, view.orientation)
-        pair = guards.pair(clamp_state.full_row(guards, roll), part)
-        if clamp_state.presses_wall(guards, pair.outer, view.efforts):
-            _torque(ctx.prims, **{pair.outer.joint: pair.outer.setpoint, pair.inner.joint: 0})
-
-
 def _corner_facts(guards, view):
     """The sensed corner facts of :data:`Facts` (``turn`` row angles, rad)."""
     row, angles = guards.row('turn'), view.angles
-    return dict(front_round=_steered(row, view),
+    return dict(front_round=motions.steered(row, view),
                 middle_round=angles['bend_iii'] >= float(row['resume_middle_rad']),
                 middle_swung=angles['bend_iii'] >= float(row['swing_rad']),
                 rear_round=angles['bend_iv'] >= float(row['resume_rear_rad']))
@@ -651,28 +618,6 @@ def _taken_text():
     return ', '.join('%s %s' % (kind, direction.upper()) for kind, direction in sorted(TAKEN))
 
 
-def _speed(goal, guards):
-    """mm/s while looking and crossing (and a turn's drive into the new pipe):
-    the goal's, else the junction row's."""
-    return goal.speed or float(guards.row('junction')['search_speed'])
-
-
-def _turn_speed(goal, row):
-    """mm/s while a turn steers the front in and swings the middle round: the
-    goal's, else the turn row's ``steer_speed``. Pulling the rear through is at
-    the row's ``pull_speed`` whatever the goal says (where the turn leaves the
-    robot, config/supervisory.yaml turn_end_mm, was measured at it)."""
-    return goal.speed or float(row['steer_speed'])
-
-
-def _slower(goal, row):
-    """How many times longer than at ``steer_speed`` the speed-set phases may
-    take: their time bounds (steer_base_s, steer_s_per_mm, timeout_s) were
-    measured at ``steer_speed``; a slower goal stretches them by the ratio of
-    the speeds, a faster one keeps them (never shortened)."""
-    return max(1.0, float(row['steer_speed']) / _turn_speed(goal, row))
-
-
 def _turn_speed_problem(goal, guards):
     """Why a turn cannot run at the goal's speed (the turn row's range, measured
     in the twin), or None; a range that is not low <= steer_speed <= high is a
@@ -689,190 +634,3 @@ def _turn_speed_problem(goal, guards):
         return ('a turn is taken at %g to %g mm/s (0: %g mm/s), not %g mm/s (%s goal_speed_min / goal_speed_max; '
                 '%s)' % (low, high, default, goal.speed, where, SPEED_WHY))
     return None
-
-
-def _time_bound(ctx, distance, speed):
-    """Robot seconds a drive of ``distance`` mm may take: ``time_factor`` times the
-    time at the speed the wheel setpoint gives (whole counts per PICO sample),
-    plus the drive's margin. A wheel that stops is caught sooner by the drive's
-    no-progress check."""
-    wheel_speed = units.wheel_speed_mm_s(speed)
-    factor = float(ctx.guards.row('junction')['time_factor'])
-    return factor * distance / wheel_speed + ctx.guards.drive['time_margin_s']
-
-
-def _stop_wheels(ctx):
-    ctx.prims.drive_at_velocity(0.0)
-    ctx.prims.wait_for('stop wheels', lambda v: abs(v.velocity) < STANDSTILL_MM_S,
-                       '|velocity| < %.0f mm/s' % STANDSTILL_MM_S)
-
-
-def _clamp(ctx, part):
-    """Clamp ``part`` with the full guards of the robot's roll (upright or on a side)."""
-    ctx.prims.clamp(part, clamp_state.full_row(ctx.guards, ctx.feed.latest().orientation))
-
-
-def _torque(prims, **counts):
-    """Bends in torque mode at the given setpoints (counts)."""
-    for joint, value in counts.items():
-        prims.change_control_mode(joint, 'torque')
-        prims.move_module(joint, value)
-
-
-def _tilt_along_the_turn(prims, row, view):
-    """Front tilt PWM toward pi/2 - (Bend I + Bend II): the front module along the new pipe."""
-    target = min(float(row['tilt_max_rad']), math.pi / 2 - view.angles['bend_i'] - view.angles['bend_ii'])
-    limit = int(row['tilt_pwm_max'])
-    pwm = int(float(row['tilt_gain']) * (target - view.angles['front_tilt']))
-    prims.move_module('front_tilt', max(-limit, min(limit, pwm)))
-
-
-def _steered(row, view):
-    """True when the front part has turned into the new pipe: Bend II round
-    the corner, or (a row with ``steered_sum_rad``: a corner wide enough for
-    Bend I to take part of the turn, the 110 mm T-joint) Bend I + Bend II,
-    the front module's direction against the middle."""
-    angles = view.angles
-    return angles['bend_ii'] >= float(row['steered_rad']) or (
-        'steered_sum_rad' in row and angles['bend_i'] + angles['bend_ii'] >= float(row['steered_sum_rad']))
-
-
-def _steered_text(row):
-    text = 'bend_ii >= %.2f' % float(row['steered_rad'])
-    if 'steered_sum_rad' in row:
-        text += ' or bend_i + bend_ii >= %.2f' % float(row['steered_sum_rad'])
-    return text
-
-
-def _level_front(ctx, target):
-    """Rotate the front part, open while the rear is clamped, onto the roll
-    ``target`` (rad) of the side the turn is taken on: rotation = rear roll -
-    target (Table 4.5: the front's roll is the rear's less the rotation).
-    Clamp Sideways ends with the rear within the straight band (+-0.05 rad)
-    and the rotation within its tolerance (0.0425 rad), so the front part
-    may lie 0.09 rad off the side; in the twin such a front (110 mm T-joint
-    entered through its run, LEFT from 60 and 73 deg: rear 3.05 rad, rotation
-    +0.036 to +0.044) kept to the wall away from the branch, rode past the
-    opening and backing off did not help; levelled first, every approach
-    roll turned in. Only where the turn row says ``level_front``: in 90 mm,
-    where every approach roll turned in without it, levelling made the pull
-    of the rear slip and the turn end 30 mm short in 2 of 3 probes
-    (notes/issue-10.md "Levelling the front")."""
-    view = ctx.feed.latest()
-    ctx.prims.rotate(math.remainder(view.orientation - target, 2 * math.pi), 'level the front')
-
-
-def _left_s(ctx, end):
-    """Robot s left until ``end``."""
-    return max(end - ctx.feed.latest().stamp, 0.0)
-
-
-def _back_off(ctx, row, speed, end):
-    """Drive back ``back_off_mm`` of odometry at ``speed``, the front tilt still
-    along the turn. A back-off that stalls ends at its own time bound and the
-    steering goes on; TimedOut only at ``end``, the steering's."""
-    prims, back_mm = ctx.prims, float(row['back_off_mm'])
-    at = ctx.feed.latest().odometry
-    bound = min(_time_bound(ctx, back_mm, speed), _left_s(ctx, end))
-    prims.drive_at_velocity(-speed)
-    try:
-        prims.follow('back off the edge', lambda v: _tilt_along_the_turn(prims, row, v),
-                     lambda v: v.odometry <= at - back_mm, 'odometry -%.0f mm' % back_mm, bound)
-    except TimedOut:
-        if _left_s(ctx, end) <= 0.0:
-            raise
-    finally:
-        prims.drive_at_velocity(0.0)
-
-
-def _backed_off_text(times):
-    """What a result says of the edges the steering backed off ('' for none)."""
-    return '; backed off an edge %d time%s' % (times, '' if times == 1 else 's') if times else ''
-
-
-def _clamp_at_corner(ctx):
-    """The front V clamps in the new pipe with its inner bend (II) carrying the
-    turn: the clamp's angle guard cannot hold there, so the guard is Bend I's
-    spring pressing the wall with Bend II round the corner. Bend II is then
-    released (0), as after a clamp, so the middle can swing."""
-    row, guards = ctx.guards.row('turn'), ctx.guards
-    pair = guards.pair(clamp_state.full_row(guards, ctx.feed.latest().orientation), 'front')
-    _torque(ctx.prims, **{pair.outer.joint: pair.outer.setpoint, pair.inner.joint: pair.inner.setpoint})
-    inner = float(row['corner_inner_rad'])
-    ctx.prims.wait_for('clamp front at the corner',
-                       lambda v: v.angles[pair.inner.joint] >= inner and clamp_state.presses_wall(guards, pair.outer,
-                                                                                                    v.efforts),
-                       '%s >= %.2f and %s on the wall' % (pair.inner.joint, inner, pair.outer.joint))
-    ctx.prims.move_module(pair.inner.joint, 0)
-
-
-def _swing_middle(ctx):
-    """The rear, still clamped, drives the middle round the corner (Bend III
-    compliant) until Bend III has taken the turn, at the turn's speed. Once Bend III says the
-    middle has started round (``swing_open_rad``), Bend II pushes the front
-    part's corner open (``swing_bend_ii`` counts, toward straight): the middle
-    then follows the front into the new pipe whether or not a wall lies
-    ahead of the corner. A mitre bend's far wall, or the run's far wall when
-    a T-joint is entered through its branch, turns the middle by itself; a
-    T-joint entered through its run has the run going on ahead instead, and
-    there, with Bend II left compliant, the rear pushed the middle on into
-    the run until the Bend II module caught on the branch's far edge, Bend
-    III stuck at 0.96-0.99 rad (twin). Opening Bend II from the start of the
-    swing wedged the middle in the 110 mm T-joint entered through its branch
-    (Bend III 0.66-0.78 rad, where it otherwise breaks free): hence only
-    once the middle has started round. bench/junction_turn_probe --pab
-    T_JOINT --world tee_run_branch_left_90 (notes/issue-10.md)."""
-    row, prims = ctx.guards.row('turn'), ctx.prims
-    open_from, swung = float(row['swing_open_rad']), float(row['swing_rad'])
-    opened = []
-
-    def open_corner(view):
-        if not opened and view.angles['bend_iii'] >= open_from:
-            _torque(prims, bend_ii=int(row['swing_bend_ii']))
-            opened.append(view.stamp)
-    _torque(prims, bend_iii=0)
-    prims.drive_at_velocity(_turn_speed(ctx.goal, row))
-    try:
-        prims.follow('swing the middle', open_corner, lambda v: v.angles['bend_iii'] >= swung,
-                     'bend_iii >= %.2f (Bend II opening from bend_iii >= %.2f)' % (swung, open_from),
-                     float(row['timeout_s']) * _slower(ctx.goal, row))
-    finally:
-        prims.drive_at_velocity(0.0)
-
-
-def _bring_rear(ctx):
-    """The front, clamped in the new pipe, pulls the rear through: Bend III
-    opening, Bend IV toward the turn side, until Bend III is past straight.
-    Bend II is released again (0): held opening, it straightened the front
-    part against the pull and the rear stayed at the corner (twin)."""
-    row = ctx.guards.row('turn')
-    counts = int(row['rear_bend_counts'])
-    _torque(ctx.prims, bend_ii=0, bend_iii=counts, bend_iv=-counts)
-    through = float(row['rear_through_rad'])
-    _drive_until(ctx, 'bring the rear through', float(row['pull_speed']),
-                 lambda v: v.angles['bend_iii'] <= through, 'bend_iii <= %.2f' % through, float(row['timeout_s']))
-
-
-def _drive_until(ctx, name, speed, guard, text, limit_s):
-    """Drive at ``speed`` until ``guard`` (within ``limit_s`` robot s), then stop the wheels."""
-    ctx.prims.drive_at_velocity(speed)
-    try:
-        ctx.prims.wait_for(name, guard, text, limit_s)
-    finally:
-        ctx.prims.drive_at_velocity(0.0)
-
-
-def _row_mm(ctx, key):
-    """The junction row's ``key`` (mm)."""
-    return float(ctx.guards.row('junction')[key])
-
-
-def _drive_by(ctx, name, distance):
-    """Drive ``distance`` mm of odometry at the search speed, then stop."""
-    speed = _speed(ctx.goal, ctx.guards)
-    start = ctx.feed.latest()
-    progress = Progress(ctx.guards.drive, start)
-    ctx.prims.drive_at_velocity(speed)
-    ctx.prims.wait_for(name, lambda v: progress.check(v) and v.odometry - start.odometry >= distance,
-                       'odometry +%.0f mm' % distance, _time_bound(ctx, distance, speed))
-    _stop_wheels(ctx)
