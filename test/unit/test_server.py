@@ -4,6 +4,7 @@ Every refusal must come at once (reserve) with a message that names the
 reason; an accepted goal ends in exactly one outcome and, unless it
 succeeded, with the safe hold on the wire.
 """
+import collections
 import math
 
 import pytest
@@ -248,6 +249,10 @@ def test_success_leaves_the_robot_alone_and_sets_the_state(rig, monkeypatch):
     assert server.status() == IDLE_UNCLAMPED and server.active is None
 
 
+#: A record as a PAB leaves one: a namedtuple of plain values.
+HALF_DONE = collections.namedtuple('HalfDone', 'odometry_mm')(120.0)
+
+
 class Leaves(Pab):
     """Fails, leaving a record of its run; says what it was handed."""
     name = 'Leaves'
@@ -257,7 +262,7 @@ class Leaves(Pab):
         Leaves.handed.append(record)
 
     def unfinished(self):
-        return 'half done'
+        return HALF_DONE
 
     def run(self, ctx):
         raise PabFailed('stopped half way')
@@ -273,12 +278,12 @@ def test_what_a_goal_left_unfinished_goes_to_the_same_goal_only_and_once_another
     feed.push(state())
     for goal in (Goal(7), Goal(7)):
         assert server.reserve(goal) is None and server.run(goal).status == ABORTED
-    assert Leaves.handed == ['half done'] * 2          # the second goal's check and run
+    assert Leaves.handed == [HALF_DONE] * 2          # the second goal's check and run
     assert server.reserve(Goal(8)) is None and server.run(Goal(8)).status == SUCCEEDED
     assert server.reserve(Goal(7)) is None and server.run(Goal(7)).status == ABORTED
-    assert Leaves.handed == ['half done'] * 2          # a goal that succeeded in between dropped it
+    assert Leaves.handed == [HALF_DONE] * 2          # a goal that succeeded in between dropped it
     assert server.reserve(Goal(7, option=codes.RIGHT)) is None and server.run(Goal(7, option=codes.RIGHT))
-    assert Leaves.handed == ['half done'] * 2          # another option is another goal
+    assert Leaves.handed == [HALF_DONE] * 2          # another option is another goal
 
 
 def test_pab_codes_match_the_action_definition():

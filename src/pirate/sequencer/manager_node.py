@@ -42,6 +42,8 @@ from pirate.sequencer.server import ABORTED, PREEMPTED, SUCCEEDED, Feedback, Pir
 from pirate.srv import ServerStatus, ServerStatusResponse
 
 SHUTDOWN_FLUSH_S = 0.3
+#: Where the manager keeps what the last goal left unfinished (PirateServer.unfinished_data).
+UNFINISHED_PARAM = '~unfinished'
 TERMINAL = (GoalStatus.SUCCEEDED, GoalStatus.ABORTED, GoalStatus.PREEMPTED, GoalStatus.RECALLED,
             GoalStatus.REJECTED)
 
@@ -111,7 +113,8 @@ class PirateManager(object):
         self.server = PirateServer(self.prims, self.feed, book, self._start_robot,
                                    feedback=self._publish_feedback, log=rospy.loginfo,
                                    pipe_diameter=int(rospy.get_param('~pipe_diameter', 90)),
-                                   authority=self._panel_refusal)
+                                   authority=self._panel_refusal, keep_unfinished=_keep_unfinished)
+        _restore_unfinished(self.server)
         self._progress_at = 0.0
         self._closing = threading.Event()
         self._current = None
@@ -305,6 +308,34 @@ class PirateManager(object):
         self.prims.safe_hold()
         time.sleep(SHUTDOWN_FLUSH_S)   # give the publisher thread time to send it
         rospy.signal_shutdown('pirate_manager stopped: safe hold sent')
+
+
+def _keep_unfinished(data):
+    """What the last goal left unfinished, in ``~unfinished``: a parameter
+    outlives this node, so a respawned manager still finishes a turn. The
+    goal has ended by now; a master that does not answer costs the record,
+    never the goal's one outcome."""
+    try:
+        if data is not None:
+            rospy.set_param(UNFINISHED_PARAM, data)
+        elif rospy.has_param(UNFINISHED_PARAM):
+            rospy.delete_param(UNFINISHED_PARAM)
+    except Exception as lost:  # pylint: disable=broad-except; the master's errors are many (socket, ROSException)
+        rospy.logwarn('could not keep %s in %s: %s', data, UNFINISHED_PARAM, lost)
+
+
+def _restore_unfinished(server):
+    """Take back what the manager before this one kept (:func:`_keep_unfinished`)."""
+    if not rospy.has_param(UNFINISHED_PARAM):
+        return
+    data = rospy.get_param(UNFINISHED_PARAM)
+    reason = server.restore_unfinished(data)
+    if reason is None:
+        rospy.loginfo('kept from the last run of this node: %s left unfinished %s; re-sent, it goes on from there',
+                      data['goal'], data['record'])
+    else:
+        rospy.logwarn('dropped %s (%r): %s', UNFINISHED_PARAM, data, reason)
+        rospy.delete_param(UNFINISHED_PARAM)
 
 
 def main():

@@ -18,7 +18,9 @@ ActionServer. Rules:
 - what a goal that did not succeed leaves unfinished (``Pab.unfinished``:
   a turn cancelled once its rear came round, which nothing sensed tells
   from a robot in a straight pipe) is handed to the same goal re-sent
-  next, and dropped when any other goal runs.
+  next, and dropped when any other goal runs; ``keep_unfinished`` is told
+  every change (as plain data, :meth:`unfinished_data`) so a restarted
+  manager can take it back (:meth:`restore_unfinished`).
 """
 import collections
 import math
@@ -75,7 +77,7 @@ class PirateServer(object):
     """Goal checking, PAB execution and the server state machine."""
 
     def __init__(self, prims, feed, book, start_robot, feedback=None, log=None,
-                 pipe_diameter=90, authority=None):
+                 pipe_diameter=90, authority=None, keep_unfinished=None):
         self.prims = prims
         self.feed = feed
         self.book = book
@@ -93,6 +95,7 @@ class PirateServer(object):
         self._guards = None
         self._tuning = None         # tunables waiting for the running goal to end
         self._unfinished = None     # (goal key, record) of the last goal, ended without success
+        self._keep_unfinished = keep_unfinished or (lambda data: None)
         prims.notify = self._on_primitive
 
     # --- accepting --------------------------------------------------------
@@ -135,6 +138,42 @@ class PirateServer(object):
             pab.carry_on(record)
         return pab
 
+    # --- what a goal left unfinished, across a restart -------------------
+    def unfinished_data(self):
+        """What the last goal left unfinished as plain data (a ROS parameter can
+        hold it): {'goal': [name, option, pipe_diameter], 'record': {...}}, or None."""
+        if self._unfinished is None:
+            return None
+        key, record = self._unfinished
+        return {'goal': list(key), 'record': dict(record._asdict())}
+
+    def restore_unfinished(self, data):
+        """Take back :meth:`unfinished_data` kept by a manager that restarted;
+        return why it cannot be taken (and keep nothing), or None. The record
+        only applies while the odometry lies in its span (the PAB checks), so
+        one the robot has moved away from since does nothing."""
+        try:
+            name, option, diameter = (int(value) for value in data['goal'])
+            if PABS.get(name, (None, None))[1] is None:
+                raise ValueError('no PAB with code %d' % name)
+            record = PABS[name][1].record_from(dict(data['record']))
+        except KeyError as missing:
+            self._unfinished = None
+            return 'not a record of an unfinished goal: no %s' % missing
+        except (TypeError, ValueError) as bad:
+            self._unfinished = None
+            return 'not a record of an unfinished goal: %s' % bad
+        self._unfinished = ((name, option, diameter), record)
+        return None
+
+    def _set_unfinished(self, unfinished):
+        """Keep ``unfinished``; tell ``keep_unfinished`` when it changed (after
+        the safe hold: keeping it may wait on the ROS master)."""
+        changed = unfinished != self._unfinished
+        self._unfinished = unfinished
+        if changed:
+            self._keep_unfinished(self.unfinished_data())
+
     def cancel(self):
         """Cancel the running goal; the PAB stops at its next wake-up."""
         self.feed.cancel()
@@ -167,10 +206,10 @@ class PirateServer(object):
         finally:
             outcome = outcome._replace(junction_odometry=getattr(pab, 'junction_odometry', math.nan),
                                        junction_missing=getattr(pab, 'junction_missing', False))
-            record = pab.unfinished() if outcome.status != SUCCEEDED else None
-            self._unfinished = (_goal_key(goal), record) if record is not None else None
             if outcome.status != SUCCEEDED:
                 self.prims.safe_hold()
+            record = pab.unfinished() if outcome.status != SUCCEEDED else None
+            self._set_unfinished((_goal_key(goal), record) if record is not None else None)
             self.trace.end(self._robot_now(), outcome.status)
             self._finish(outcome)
         return outcome

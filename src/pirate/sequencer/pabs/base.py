@@ -104,8 +104,16 @@ class Pab(object):
 
     def unfinished(self):
         """What a run that did not succeed leaves for the same goal re-sent
-        (the server keeps it until another goal runs), or None."""
+        (the server keeps it until another goal runs), or None: a namedtuple
+        of plain values, which a restarted manager keeps (:meth:`record_from`)."""
         return None
+
+    @classmethod
+    def record_from(cls, data):
+        """The record :meth:`unfinished` returns, from its fields in ``data``
+        (a dict, as a restarted manager kept it); ValueError when this PAB
+        keeps no record or ``data`` is not one."""
+        raise ValueError('%s keeps no record' % cls.__name__)
 
     def facts(self, ctx):
         """What the guards of the transitions look at, read after an action."""

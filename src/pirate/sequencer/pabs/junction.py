@@ -314,6 +314,16 @@ class TakeJunction(Pab):
         :class:`PastCorner`, for the same goal re-sent; else None."""
         return self.past
 
+    @classmethod
+    def record_from(cls, data):
+        """A :class:`PastCorner` from ``data`` ({'fact', 'from_mm', 'to_mm'})."""
+        fact, from_mm, to_mm = data['fact'], float(data['from_mm']), float(data['to_mm'])
+        if fact not in RESUMED_TEXT:
+            raise ValueError('fact %r is none of %s' % (fact, ', '.join(sorted(RESUMED_TEXT))))
+        if not math.isfinite(from_mm) or not math.isfinite(to_mm) or from_mm > to_mm:
+            raise ValueError('odometry span %g .. %g mm is not one' % (from_mm, to_mm))
+        return PastCorner(fact, from_mm, to_mm)
+
     def _carried_facts(self, guards, view):
         """The record's fact, while the odometry lies in its span (give or
         take the drive's tolerance, mm)."""

@@ -1,0 +1,195 @@
+"""What a goal leaves unfinished outlives a restarted manager (issue 10).
+
+A turn cancelled once its rear came round leaves the server a record
+(:class:`pirate.sequencer.pabs.junction.PastCorner`) that nothing sensed
+can replace: before, a manager restarted (respawned after a crash, or by
+the operator) forgot it, and the re-sent turn steered in a straight pipe
+until its distance bound. The server now hands every change of the record
+to ``keep_unfinished`` as plain data (the manager keeps it in its private
+parameter ``~unfinished``, which outlives the node) and takes it back with
+:meth:`PirateServer.restore_unfinished`, refusing data that is not one.
+"""
+import collections
+import math
+
+import pytest
+
+from pirate.robot.tables import JOINT_NAMES
+from pirate.sequencer.guards import GuardBook, load_files
+from pirate.sequencer.pabs import PABS, codes
+from pirate.sequencer.pabs import junction as jn
+from pirate.sequencer.pabs.base import Pab, PabFailed
+from pirate.sequencer.primitives import MotionPrimitives
+from pirate.sequencer.server import ABORTED, SUCCEEDED, PirateServer
+from pirate.state.feed import RobotFeed, RobotView
+
+from fakes import command_arrays
+
+BOOK = GuardBook(*load_files())
+CODE = 7                                   # a code Pirate.action does not use
+Goal = collections.namedtuple('Goal', 'name option distance speed pipe_diameter')
+RECORD = jn.PastCorner('driving_in', 1182.0, 1332.0)
+
+
+class LeavesARecord(Pab):
+    """Aborts leaving RECORD unless it was handed one; then succeeds."""
+    name = 'Leaves a record'
+    record_from = classmethod(jn.TakeJunction.record_from.__func__)
+
+    def __init__(self):
+        self.carried = None
+
+    def carry_on(self, record):
+        self.carried = record
+
+    def unfinished(self):
+        return RECORD
+
+    def run(self, ctx):
+        if self.carried != RECORD:
+            raise PabFailed('cancelled past the corner')
+        return 'went on from %s' % (self.carried,)
+
+
+def server(keep):
+    """A server whose robot stands still, each change of its record handed to ``keep``."""
+    _, setpoint, control, limit = command_arrays()
+    feed = RobotFeed(0.3, clock=lambda: 50.0)
+    feed.push(RobotView(dict.fromkeys(JOINT_NAMES, 0.0), math.pi, 1200.0, 0.0, 50.0, {}))
+    return PirateServer(MotionPrimitives(setpoint, control, limit, feed), feed, BOOK, lambda: None,
+                        keep_unfinished=keep)
+
+
+def run(srv, goal):
+    assert srv.reserve(goal) is None
+    return srv.run(goal)
+
+
+@pytest.fixture
+def leaves(monkeypatch):
+    monkeypatch.setitem(PABS, CODE, ('LEAVES', LeavesARecord))
+    return Goal(CODE, codes.LEFT, 800.0, 0.0, 90)
+
+
+def test_a_restarted_server_takes_back_the_record_and_the_same_goal_goes_on_from_it(leaves):
+    kept = []
+    first = server(kept.append)
+    assert run(first, leaves).status == ABORTED
+    assert kept == [{'goal': [CODE, codes.LEFT, 90], 'record': {'fact': 'driving_in', 'from_mm': 1182.0,
+                                                                 'to_mm': 1332.0}}]
+    kept_after_restart = []
+    second = server(kept_after_restart.append)
+    assert second.restore_unfinished(kept[-1]) is None
+    assert second.unfinished_data() == kept[-1]
+    outcome = run(second, leaves)
+    assert outcome.status == SUCCEEDED, outcome.message
+    assert kept_after_restart == [None]      # done: the manager drops its parameter
+
+
+def test_another_goal_after_a_restart_does_not_get_the_record_and_drops_it(leaves):
+    kept = []
+    srv = server(kept.append)
+    assert srv.restore_unfinished({'goal': [CODE, codes.RIGHT, 90], 'record': RECORD._asdict()}) is None
+    assert run(srv, leaves).status == ABORTED          # LEFT, not the RIGHT the record is of
+    assert srv.unfinished_data()['goal'] == [CODE, codes.LEFT, 90]
+
+
+@pytest.mark.parametrize('data, why', [
+    ({}, "no 'goal'"),
+    ({'goal': [codes.MITRE_BEND, codes.LEFT, 90]}, "no 'record'"),
+    ({'goal': 'MITRE_BEND', 'record': RECORD._asdict()}, 'invalid literal'),
+    ({'goal': [99, 1, 90], 'record': RECORD._asdict()}, 'no PAB with code 99'),
+    ({'goal': [codes.DRIVE, 0, 90], 'record': RECORD._asdict()}, 'Drive keeps no record'),
+    ({'goal': [codes.MITRE_BEND, codes.LEFT, 90], 'record': dict(RECORD._asdict(), fact='steering')},
+     "fact 'steering' is none of"),
+    ({'goal': [codes.MITRE_BEND, codes.LEFT, 90], 'record': dict(RECORD._asdict(), to_mm=float('nan'))},
+     'is not one'),
+    ({'goal': [codes.MITRE_BEND, codes.LEFT, 90], 'record': dict(RECORD._asdict(), from_mm=2000.0)},
+     'is not one'),
+    ({'goal': [codes.MITRE_BEND, codes.LEFT, 90], 'record': {'fact': 'driven_in', 'from_mm': 'x', 'to_mm': 1}},
+     'could not convert'),
+])
+def test_data_that_is_not_a_record_is_refused_with_why_and_nothing_is_kept(data, why):
+    srv = server(lambda data: None)
+    srv.restore_unfinished({'goal': [codes.MITRE_BEND, codes.LEFT, 90], 'record': RECORD._asdict()})
+    reason = srv.restore_unfinished(data)
+    assert reason is not None and why in reason, reason
+    assert srv.unfinished_data() is None
+
+
+def test_a_turn_record_round_trips_through_plain_data():
+    for fact in jn.RESUMED_TEXT:
+        record = jn.PastCorner(fact, 10.0, 160.0)
+        assert jn.TakeJunction.record_from(dict(record._asdict())) == record
+
+
+class ParamServer(object):
+    """The rospy calls the manager keeps its record with, over a dict."""
+
+    def __init__(self, params=None, down=False):
+        self.params, self.down, self.warned, self.said = dict(params or {}), down, [], []
+
+    def _master(self):
+        if self.down:
+            raise OSError('connection refused')
+
+    def set_param(self, name, value):
+        self._master()
+        self.params[name] = value
+
+    def has_param(self, name):
+        self._master()
+        return name in self.params
+
+    def get_param(self, name):
+        return self.params[name]
+
+    def delete_param(self, name):
+        self._master()
+        del self.params[name]
+
+    def logwarn(self, text, *args):
+        self.warned.append(text % args)
+
+    def loginfo(self, text, *args):
+        self.said.append(text % args)
+
+
+@pytest.fixture
+def node(monkeypatch):
+    from pirate.sequencer import manager_node
+    return manager_node, lambda fake: monkeypatch.setattr(manager_node, 'rospy', fake)
+
+
+def test_the_manager_keeps_the_record_in_a_parameter_and_a_new_one_takes_it_back(node, leaves):
+    manager_node, use = node
+    params = ParamServer()
+    use(params)
+    first = server(manager_node._keep_unfinished)
+    assert run(first, leaves).status == ABORTED
+    assert params.params[manager_node.UNFINISHED_PARAM]['record']['fact'] == 'driving_in'
+    second = server(manager_node._keep_unfinished)
+    manager_node._restore_unfinished(second)
+    assert params.said and not params.warned
+    assert run(second, leaves).status == SUCCEEDED
+    assert manager_node.UNFINISHED_PARAM not in params.params
+
+
+def test_a_parameter_that_is_not_a_record_is_dropped_with_a_warning(node):
+    manager_node, use = node
+    params = ParamServer({manager_node.UNFINISHED_PARAM: {'goal': [codes.MITRE_BEND, codes.LEFT, 90]}})
+    use(params)
+    srv = server(manager_node._keep_unfinished)
+    manager_node._restore_unfinished(srv)
+    assert srv.unfinished_data() is None and manager_node.UNFINISHED_PARAM not in params.params
+    assert len(params.warned) == 1 and "no 'record'" in params.warned[0]
+
+
+def test_a_master_that_does_not_answer_costs_the_record_not_the_outcome(node, leaves):
+    manager_node, use = node
+    params = ParamServer(down=True)
+    use(params)
+    srv = server(manager_node._keep_unfinished)
+    outcome = run(srv, leaves)
+    assert outcome.status == ABORTED and 'cancelled past the corner' in outcome.message
+    assert len(params.warned) == 1 and 'connection refused' in params.warned[0]
