@@ -51,13 +51,13 @@ class LeavesARecord(Pab):
         return 'went on from %s' % (self.carried,)
 
 
-def server(keep):
+def server(keep, log=None):
     """A server whose robot stands still, each change of its record handed to ``keep``."""
     _, setpoint, control, limit = command_arrays()
     feed = RobotFeed(0.3, clock=lambda: 50.0)
     feed.push(RobotView(dict.fromkeys(JOINT_NAMES, 0.0), math.pi, 1200.0, 0.0, 50.0, {}))
     return PirateServer(MotionPrimitives(setpoint, control, limit, feed), feed, BOOK, lambda: None,
-                        keep_unfinished=keep)
+                        log=log, keep_unfinished=keep)
 
 
 def run(srv, goal):
@@ -187,9 +187,10 @@ def test_a_parameter_that_is_not_a_record_is_dropped_with_a_warning(node):
 
 def test_a_master_that_does_not_answer_costs_the_record_not_the_outcome(node, leaves):
     manager_node, use = node
-    params = ParamServer(down=True)
+    params, said = ParamServer(down=True), []
     use(params)
-    srv = server(manager_node._keep_unfinished)
+    srv = server(manager_node._keep_unfinished, said.append)
     outcome = run(srv, leaves)
     assert outcome.status == ABORTED and 'cancelled past the corner' in outcome.message
-    assert len(params.warned) == 1 and 'connection refused' in params.warned[0]
+    assert srv.active is None and srv.reserve(leaves) is None          # the server ended the goal
+    assert any('could not keep' in line and 'connection refused' in line for line in said), said

@@ -312,16 +312,12 @@ class PirateManager(object):
 
 def _keep_unfinished(data):
     """What the last goal left unfinished, in ``~unfinished``: a parameter
-    outlives this node, so a respawned manager still finishes a turn. The
-    goal has ended by now; a master that does not answer costs the record,
-    never the goal's one outcome."""
-    try:
-        if data is not None:
-            rospy.set_param(UNFINISHED_PARAM, data)
-        elif rospy.has_param(UNFINISHED_PARAM):
-            rospy.delete_param(UNFINISHED_PARAM)
-    except Exception as lost:  # pylint: disable=broad-except; the master's errors are many (socket, ROSException)
-        rospy.logwarn('could not keep %s in %s: %s', data, UNFINISHED_PARAM, lost)
+    outlives this node, so a manager started again under the same master
+    still finishes a turn (a master that does not answer: the server logs it)."""
+    if data is not None:
+        rospy.set_param(UNFINISHED_PARAM, data)
+    elif rospy.has_param(UNFINISHED_PARAM):
+        rospy.delete_param(UNFINISHED_PARAM)
 
 
 def _restore_unfinished(server):

@@ -167,12 +167,16 @@ class PirateServer(object):
         return None
 
     def _set_unfinished(self, unfinished):
-        """Keep ``unfinished``; tell ``keep_unfinished`` when it changed (after
-        the safe hold: keeping it may wait on the ROS master)."""
+        """Keep ``unfinished``; tell ``keep_unfinished`` when it changed. Called
+        after the safe hold (keeping it may wait on the ROS master); one that
+        fails costs the record kept outside, never the goal's one outcome."""
         changed = unfinished != self._unfinished
         self._unfinished = unfinished
         if changed:
-            self._keep_unfinished(self.unfinished_data())
+            try:
+                self._keep_unfinished(self.unfinished_data())
+            except Exception as lost:  # pylint: disable=broad-except; the one exit path must hold
+                self._log('could not keep what the goal left unfinished (%s): %s' % (self.unfinished_data(), lost))
 
     def cancel(self):
         """Cancel the running goal; the PAB stops at its next wake-up."""
