@@ -173,10 +173,11 @@ class PirateServer(object):
         changed = unfinished != self._unfinished
         self._unfinished = unfinished
         if changed:
+            data = self.unfinished_data()
             try:
-                self._keep_unfinished(self.unfinished_data())
+                self._keep_unfinished(data)
             except Exception as lost:  # pylint: disable=broad-except; the one exit path must hold
-                self._log('could not keep what the goal left unfinished (%s): %s' % (self.unfinished_data(), lost))
+                self._log('could not keep what the goal left unfinished (%s): %s' % (data, lost))
 
     def cancel(self):
         """Cancel the running goal; the PAB stops at its next wake-up."""

@@ -95,9 +95,7 @@ class Drive(Pab):
         ctx.prims.wait_for(name, covered, '|odometry - start| >= %.1f mm' % covered_mm, timeout)
 
     def _stop(self, ctx):
-        ctx.prims.drive_at_velocity(0.0)
-        ctx.prims.wait_for('stop wheels', lambda v: abs(v.velocity) < STANDSTILL_MM_S,
-                           '|velocity| < %.0f mm/s' % STANDSTILL_MM_S)
+        stop_wheels(ctx)
         if self.method == 'odometry':
             driven = ctx.feed.latest().odometry - self.start_mm
             error = abs(driven - ctx.goal.distance)
@@ -160,3 +158,11 @@ class Progress(object):
                             % (view.stamp - self.mark_s, view.odometry))
         return True
 
+
+def stop_wheels(ctx):
+    """Wheels to 0, then wait until the encoders say they stand: the next
+    step (the odometry's verdict, a clamp, sensing a junction's place) reads
+    a robot at rest."""
+    ctx.prims.drive_at_velocity(0.0)
+    ctx.prims.wait_for('stop wheels', lambda v: abs(v.velocity) < STANDSTILL_MM_S,
+                       '|velocity| < %.0f mm/s' % STANDSTILL_MM_S)

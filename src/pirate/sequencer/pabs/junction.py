@@ -95,7 +95,7 @@ from pirate.sequencer.pabs import codes
 from pirate.sequencer.pabs import turn_motions as motions
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, PabFailed, StateMachine, Transition
 from pirate.sequencer.pabs.clamp import Clamp, in_region, region_around
-from pirate.sequencer.pabs.drive import Progress, speed_problem
+from pirate.sequencer.pabs.drive import Progress, speed_problem, stop_wheels
 from pirate.state.feed import TimedOut
 
 CHANGE_MODES = 'change control modes'
@@ -150,6 +150,7 @@ TURN = Guard('turn', lambda f: f.turn)
 ON = Guard('NOT turn', lambda f: not f.turn)
 DONE = Guard('NOT turn AND front clamped AND rear clamped AND straight',
              lambda f: not f.turn and f.front and f.rear and f.straight)
+
 
 def _in_a_corner(f):
     """Some bend says the robot is (partly) round a corner."""
@@ -430,7 +431,7 @@ class TakeJunction(Pab):
         return {
             CHANGE_MODES: self._change_modes,
             SEARCHING: self._search,
-            STOPPING: motions.stop_wheels,
+            STOPPING: stop_wheels,
             UNCLAMPING_FRONT: self._unclamp_front,
             CROSSING_FRONT: lambda ctx: motions.drive_across(ctx, 'front'),
             CLAMPING_FRONT: lambda ctx: motions.clamp_full(ctx, 'front'),

@@ -11,7 +11,7 @@ import math
 
 from pirate.robot import units
 from pirate.sequencer import clamp_state
-from pirate.sequencer.pabs.drive import STANDSTILL_MM_S, Progress
+from pirate.sequencer.pabs.drive import STANDSTILL_MM_S, Progress, stop_wheels
 from pirate.state.feed import TimedOut
 
 
@@ -71,14 +71,6 @@ def drive_across(ctx, part):
     """Drive the junction row's ``cross_<part>_mm`` so ``part`` ('front' /
     'rear') crosses the junction straight on."""
     drive_by(ctx, 'drive %s across' % part, float(ctx.guards.row('junction')['cross_%s_mm' % part]))
-
-
-def stop_wheels(ctx):
-    """Wheels to 0, then wait until the encoders say they stand: the next
-    step (a clamp, sensing the junction's place) reads a robot at rest."""
-    ctx.prims.drive_at_velocity(0.0)
-    ctx.prims.wait_for('stop wheels', lambda v: abs(v.velocity) < STANDSTILL_MM_S,
-                       '|velocity| < %.0f mm/s' % STANDSTILL_MM_S)
 
 
 def torque(prims, **counts):
