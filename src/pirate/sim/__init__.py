@@ -1,3 +1,3 @@
 """The simulated robot: the physics twin (twin*.py, boards.py), its ROS edge
 (node.py) and in-process harness (harness.py); fake_robot.py is a fitted
-fast fake for unit tests and the firmware in the loop, not physics."""
+fast fake that only unit tests build, not physics."""

@@ -18,11 +18,8 @@ Private params: ``~world`` (a world file or a name under config/worlds/:
 the pipe network of the physics twin; empty: the straight pipe of
 ``~pipe_diameter``), ``~pipe_diameter`` (mm, 90 or 110), ``~orientation`` (rad,
 start roll, Fig 4.7), ``~joints`` (dict joint -> rad, start angles),
-``~seed`` (sensor noise seed, -1 none), ``~rate`` (real-time factor);
-``~fake`` (tests only, no launch argument: the fast fake of
-:mod:`pirate.sim.fake_robot` instead of the twin, for the two rostests
-whose checks the twin does not reproduce yet: seq_mission, mission_pause;
-notes/issue-9.md).
+``~seed`` (sensor noise seed, -1 none), ``~rate`` (real-time factor).
+The robot is always the physics twin (:mod:`pirate.sim.robot_end`).
 """
 import threading
 import time
@@ -44,15 +41,10 @@ CLOCK_START_S = 1.0     # sim time 0 means "no clock yet" to rospy
 
 
 def _robot():
-    """The physics twin; the fast fake only when a test sets ``~fake``."""
-    args = dict(pipe_diameter=rospy.get_param('~pipe_diameter', 90),
-                orientation=float(rospy.get_param('~orientation', 1.5707963)),
-                joints=rospy.get_param('~joints', {}), seed=int(rospy.get_param('~seed', -1)))
-    if rospy.get_param('~fake', False):
-        from pirate.sim.fake_robot import FakeRobot
-        rospy.logwarn('sim_robot: the FAST FAKE (fitted to the report, not physics), for a test')
-        return FakeRobot(**args)
-    return make_robot(world=rospy.get_param('~world', ''), **args)
+    """The physics twin in the world and start pose the params name."""
+    return make_robot(world=rospy.get_param('~world', ''), pipe_diameter=rospy.get_param('~pipe_diameter', 90),
+                      orientation=float(rospy.get_param('~orientation', 1.5707963)),
+                      joints=rospy.get_param('~joints', {}), seed=int(rospy.get_param('~seed', -1)))
 
 
 class SimRobotNode(object):
