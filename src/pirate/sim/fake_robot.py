@@ -3,8 +3,8 @@
 The simulated robot is the physics twin (:mod:`pirate.sim.twin`, chosen by
 ``robot:=sim`` and ``SimHarness()``). This module is the old single
 cross-section model, kept only where a unit test needs a fast deterministic
-robot (many-roll sweeps, property tests) and behind the firmware in the
-loop (``robot:=fil``), which tests the link, not the physics. Its constants
+robot (many-roll sweeps, property tests); no launch file, node or rostest
+builds it. Its constants
 below were FITTED to the report's own tables (6.1, 6.2, 6.5) so that it
 reproduces them; they are not measured properties of PIRATE, and agreement
 with the report proves nothing about the robot (issue 9).
