@@ -71,8 +71,8 @@ def test_a_front_rotated_onto_the_side_clamps_sideways_while_the_rear_clamps_upr
 @pytest.mark.parametrize('mm', [90, 110])
 @pytest.mark.parametrize('rear_roll, rotation', [(2.5, 0.3), (2.5, -0.6), (1.571, 0.0), (0.9, 0.7), (-0.3, -0.5)])
 def test_the_turns_row_is_the_one_the_clamp_state_judges_the_part_by(mm, rear_roll, rotation):
-    ctx, _ = context(mm, rear_roll, rotation)
+    ctx, robot = context(mm, rear_roll, rotation)
     angles = dict(FLAT, rotation=rotation)
     for part in clamp_state.PARTS:
         roll = clamp_state.part_roll(part, angles, rear_roll)
-        assert motions.full_row_of(ctx, part) == clamp_state.full_row(ctx.guards, roll)
+        assert motions.full_row_of(ctx.guards, robot.view, part) == clamp_state.full_row(ctx.guards, roll)

@@ -80,18 +80,17 @@ def torque(prims, **counts):
         prims.move_module(joint, value)
 
 
-def full_row_of(ctx, part):
-    """The full clamp's guard row at ``part``'s own roll (upright or on a
-    side; :func:`pirate.sequencer.clamp_state.part_roll`): the rotation can
-    put the front on a side while the rear is not, and the clamp state the
-    server reads afterwards judges each part by its own roll too."""
-    view = ctx.feed.latest()
-    return clamp_state.full_row(ctx.guards, clamp_state.part_roll(part, view.angles, view.orientation))
+def full_row_of(guards, view, part):
+    """The full clamp's guard row at ``part``'s own roll in ``view`` (upright
+    or on a side; :func:`pirate.sequencer.clamp_state.part_roll`): the
+    rotation can put the front on a side while the rear is not, and the
+    clamp state the server reads afterwards judges each part by its own roll too."""
+    return clamp_state.full_row(guards, clamp_state.part_roll(part, view.angles, view.orientation))
 
 
 def clamp_full(ctx, part):
     """Clamp ``part`` with the full guards of its roll (upright or on a side)."""
-    ctx.prims.clamp(part, full_row_of(ctx, part))
+    ctx.prims.clamp(part, full_row_of(ctx.guards, ctx.feed.latest(), part))
 
 
 def press_what_is_clamped(ctx):
@@ -102,10 +101,10 @@ def press_what_is_clamped(ctx):
     (twin: resumed without this, the middle did not swing round and the
     front did not pull the rear through, 60 s each). From a fresh start it
     sets what Clamp Sideways left."""
-    guards, efforts = ctx.guards, ctx.feed.latest().efforts
+    guards, view = ctx.guards, ctx.feed.latest()
     for part in clamp_state.PARTS:
-        pair = guards.pair(full_row_of(ctx, part), part)
-        if clamp_state.presses_wall(guards, pair.outer, efforts):
+        pair = guards.pair(full_row_of(guards, view, part), part)
+        if clamp_state.presses_wall(guards, pair.outer, view.efforts):
             torque(ctx.prims, **{pair.outer.joint: pair.outer.setpoint, pair.inner.joint: 0})
 
 
@@ -202,7 +201,7 @@ def clamp_at_corner(ctx):
     spring pressing the wall with Bend II round the corner. Bend II is then
     released (0), as after a clamp, so the middle can swing."""
     row, guards = ctx.guards.row('turn'), ctx.guards
-    pair = guards.pair(full_row_of(ctx, 'front'), 'front')
+    pair = guards.pair(full_row_of(guards, ctx.feed.latest(), 'front'), 'front')
     torque(ctx.prims, **{pair.outer.joint: pair.outer.setpoint, pair.inner.joint: pair.inner.setpoint})
     inner = float(row['corner_inner_rad'])
     ctx.prims.wait_for('clamp front at the corner',
