@@ -15,7 +15,7 @@ import mujoco
 import numpy
 
 from pirate.robot import safety, tables, units
-from pirate.sim import boards, twin_model, twin_robot
+from pirate.sim import boards, twin_model, twin_robot, twin_start
 from pirate.sim.latch import CODE, CommandLatch
 from pirate.world import network
 
@@ -40,10 +40,7 @@ class TwinRobot(CommandLatch):
         self._rng = random.Random(seed) if seed is not None and seed >= 0 else None
         self._qadr = {name: self.model.jnt_qposadr[self.model.joint(name).id] for name in twin_robot.chain_joints()}
         self._dofadr = {name: self.model.jnt_dofadr[self.model.joint(name).id] for name in twin_robot.chain_joints()}
-        for name, angle in (joints or {}).items():
-            if name in self._qadr:
-                self.data.qpos[self._qadr[name]] = angle
-        mujoco.mj_forward(self.model, self.data)
+        self._pose(joints, orientation)
         self._actuator = {name: self.model.actuator(name).id for name in twin_model.actuator_names()}
         self._make_boards()
         self._ctrl()
@@ -51,6 +48,17 @@ class TwinRobot(CommandLatch):
         self._settle(settle_s)
         self.rotation_board.zero = self.angle('rotation')
         self.time = 0.0
+
+    def _pose(self, joints, roll):
+        """The start ``joints`` set, the robot moved across the pipe to where
+        they fit (:mod:`pirate.sim.twin_start`); raises StartPoseError."""
+        _, frame = self.world.locate(self.world.start_m)
+        try:
+            twin_start.place(self.model, self.data, joints, twin_robot.ROOT_JOINT, frame.axes[1:3],
+                             self.pipe_diameter_m / 2, stops={'front_tilt': self.config['front_tilt']['range_rad']})
+        except twin_start.StartPoseError as refused:
+            raise twin_start.StartPoseError('%s (world %s, %.0f mm, roll %.2f rad)' % (
+                refused, self.world.name, self.pipe_diameter_m * 1000, roll))
 
     def _make_boards(self):
         cfg = self.config
