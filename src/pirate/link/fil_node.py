@@ -5,7 +5,7 @@ port serial_node opens) and simulated PICO boards around the physics twin.
 Private params: ``~link`` (path of the pty symlink), ``~baud`` (paced line
 rate, 57600), ``~world`` (the twin's pipe network; empty: the straight
 pipe of ``~pipe_diameter``), ``~pipe_diameter`` (mm), ``~orientation`` (rad),
-``~seed`` (sensor noise, -1 none), ``~firmware`` (path of
+``~joints`` (start angles, as sim_robot's), ``~seed`` (sensor noise, -1 none), ``~firmware`` (path of
 pirate_bay_native; empty: build it with firmware/Makefile).
 FIL runs in wall time (the firmware has its own clock): no /clock.
 
@@ -21,7 +21,7 @@ from std_msgs.msg import String
 
 from pirate.link.fil import FirmwareInTheLoop, build_native_firmware
 from pirate.robot import tables
-from pirate.sim.robot_end import make_robot
+from pirate.sim import robot_end
 
 
 def main():
@@ -33,10 +33,7 @@ def main():
         except RuntimeError as error:
             rospy.logfatal(str(error))
             raise SystemExit(1)
-    seed = int(rospy.get_param('~seed', -1))
-    model = make_robot(world=rospy.get_param('~world', ''), pipe_diameter=rospy.get_param('~pipe_diameter', 90),
-                       orientation=float(rospy.get_param('~orientation', 1.5707963)),
-                       seed=seed if seed >= 0 else None)
+    model = robot_end.of_node(rospy.get_param, rospy.logfatal)
     fil = FirmwareInTheLoop(firmware, model, rospy.get_param('~link'),
                             baud=int(rospy.get_param('~baud', 57600)), record=False)
     fil.start()

@@ -17,9 +17,11 @@ count (:class:`pirate.state.robot_clock.RobotClock`, ticked by each step).
 Private params: ``~world`` (a world file or a name under config/worlds/:
 the pipe network of the physics twin; empty: the straight pipe of
 ``~pipe_diameter``), ``~pipe_diameter`` (mm, 90 or 110), ``~orientation`` (rad,
-start roll, Fig 4.7), ``~joints`` (dict joint -> rad, start angles),
+start roll, Fig 4.7), ``~joints`` (dict joint -> rad, start angles: the
+robot is moved across the pipe to where they fit, :mod:`pirate.sim.twin_start`),
 ``~seed`` (sensor noise seed, -1 none), ``~rate`` (real-time factor).
-The robot is always the physics twin (:mod:`pirate.sim.robot_end`).
+The robot is always the physics twin (:mod:`pirate.sim.robot_end`); a bad
+world, diameter or start pose ends the node with its reason (exit 1).
 """
 import threading
 import time
@@ -31,7 +33,7 @@ from rosgraph_msgs.msg import Clock
 from pirate import names
 from pirate.robot import tables
 from pirate.msg import ControlArray, LimitArray, SetpointArray, SmallState
-from pirate.sim.robot_end import make_robot
+from pirate.sim import robot_end
 from pirate.sim.watchdog import MegaWatchdog
 from pirate.state.robot_clock import RobotClock
 
@@ -40,18 +42,11 @@ MEGA_PERIOD_S = 0.1     # Mega refresh of all nine boards, about 10 Hz
 CLOCK_START_S = 1.0     # sim time 0 means "no clock yet" to rospy
 
 
-def _robot():
-    """The physics twin in the world and start pose the params name."""
-    return make_robot(world=rospy.get_param('~world', ''), pipe_diameter=rospy.get_param('~pipe_diameter', 90),
-                      orientation=float(rospy.get_param('~orientation', 1.5707963)),
-                      joints=rospy.get_param('~joints', {}), seed=int(rospy.get_param('~seed', -1)))
-
-
 class SimRobotNode(object):
     """Wires a simulated robot (pirate.sim.robot_end) to the topics a real Mega uses."""
 
     def __init__(self):
-        self.model = _robot()
+        self.model = robot_end.of_node(rospy.get_param, rospy.logfatal)
         self.rate = float(rospy.get_param('~rate', 1.0))
         self.sim_time = rospy.get_param('/use_sim_time', False)
         if self.rate <= 0 or (not self.sim_time and self.rate != 1.0):

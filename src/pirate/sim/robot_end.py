@@ -22,6 +22,23 @@ def default_world(pipe_diameter):
                          % (pipe_diameter, ' and '.join(str(d) for d in sorted(STRAIGHT_WORLDS))))
 
 
+def of_node(get_param, logfatal):
+    """The robot a node's private params name (``sim_robot``, ``fil_robot``):
+    ``~world``, ``~pipe_diameter``, ``~orientation`` (rad), ``~joints``
+    (start angles, :mod:`pirate.sim.twin_start`), ``~seed`` (-1: no noise).
+    A bad one is logged fatal with its reason and ends the node
+    (SystemExit 1) before it publishes anything: a robot that is not the one
+    asked for must not start."""
+    seed = get_param('~seed', -1)
+    try:
+        return make_robot(world=get_param('~world', ''), pipe_diameter=get_param('~pipe_diameter', 90),
+                          orientation=float(get_param('~orientation', 1.5707963)), joints=get_param('~joints', {}),
+                          seed=int(seed) if int(seed) >= 0 else None)
+    except ValueError as refused:      # WorldError, StartPoseError, a diameter without a world, not a number
+        logfatal('cannot start the simulated robot: %s' % refused)
+        raise SystemExit(1)
+
+
 def make_robot(world='', pipe_diameter=90, orientation=1.5707963, joints=None, seed=None, config=None):
     """The physics twin in ``world`` (default: the straight pipe of
     ``pipe_diameter`` mm); ``config``: its constants, default config/twin.yaml."""
