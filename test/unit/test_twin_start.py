@@ -15,13 +15,15 @@ from pirate.sim.harness import SimHarness
 from pirate.sim.twin import TwinRobot
 
 STRAIGHT_90 = os.path.join(paths.CONFIG_DIR, 'worlds', 'straight_90.yaml')
+STRAIGHT_110 = os.path.join(paths.CONFIG_DIR, 'worlds', 'straight_110.yaml')
 UPRIGHT = math.pi / 2
 REAR_V_REVERSED = {'bend_iii': -0.5, 'bend_iv': 0.5}     # the rear V bent the wrong way, apex down
 APEX_WHEELS = {23, 26}
+BODY_RADIUS_M = twin_model.load_config()['geometry']['body_radius_m']
 
 
-def twin(joints, roll=UPRIGHT, settle_s=0.0):
-    return TwinRobot(STRAIGHT_90, orientation=roll, joints=joints, settle_s=settle_s)
+def twin(joints, roll=UPRIGHT, settle_s=0.0, world=STRAIGHT_90):
+    return TwinRobot(world, orientation=roll, joints=joints, settle_s=settle_s)
 
 
 def depth_as_set(joints, roll=UPRIGHT):
@@ -58,11 +60,12 @@ def test_a_pose_that_fits_where_the_robot_lies_is_not_moved():
     assert {name: round(robot.angle(name), 6) for name in joints} == joints
 
 
-def place(joints, roll=UPRIGHT):
+def place(joints, roll=UPRIGHT, world=STRAIGHT_90):
     """twin_start.place on a fresh robot lying straight: (robot, move m, pitch rad)."""
-    robot = twin({}, roll)
-    move, pitch = twin_start.place(robot.model, robot.data, joints, twin_robot.ROOT_JOINT,
-                                   robot.world.locate(robot.world.start_m)[1].axes[1:3], robot.pipe_diameter_m / 2,
+    robot = twin({}, roll, world=world)
+    frame = robot.world.locate(robot.world.start_m)[1]
+    bore = (numpy.asarray(frame.origin), frame.axes[1:3], robot.pipe_diameter_m / 2 - BODY_RADIUS_M)
+    move, pitch = twin_start.place(robot.model, robot.data, joints, twin_robot.ROOT_JOINT, bore,
                                    stops={'front_tilt': robot.config['front_tilt']['range_rad']})
     return robot, move, pitch
 
@@ -85,6 +88,17 @@ def test_a_pose_that_fits_only_pitched_is_pitched():
     assert pitch != 0.0
     assert twin_start.deepest(robot.model, robot.data, twin_robot.ROOT)[0] <= twin_start.FIT_TOLERANCE_M
     assert {name: robot.angle(name) for name in joints} == joints
+
+
+def test_the_robot_is_never_put_outside_the_pipe():
+    """Outside the wall ring nothing is in the way: a first version put this
+    pose there, the robot fell through nothing, and Clamp Sideways ended in a
+    false success with no wheel on any wall (bench/pab_clamp_sweep --random-joints)."""
+    robot, move, _ = place({'bend_iii': 0.48, 'bend_iv': -0.27}, math.radians(147), world=STRAIGHT_110)
+    frame = robot.world.locate(robot.world.start_m)[1]
+    root = robot.data.body(twin_robot.ROOT).xpos - numpy.asarray(frame.origin)
+    from_axis = numpy.linalg.norm(root - numpy.dot(root, frame.axes[0]) * numpy.asarray(frame.axes[0]))
+    assert from_axis <= robot.pipe_diameter_m / 2 - BODY_RADIUS_M + 1e-9
 
 
 def test_a_pose_that_fits_nowhere_is_refused_naming_the_part_and_the_pipe():

@@ -53,9 +53,11 @@ class TwinRobot(CommandLatch):
         """The start ``joints`` set, the robot moved across the pipe to where
         they fit (:mod:`pirate.sim.twin_start`); raises StartPoseError."""
         _, frame = self.world.locate(self.world.start_m)
+        inside_m = self.pipe_diameter_m / 2 - self.config['geometry']['body_radius_m']
         try:
-            twin_start.place(self.model, self.data, joints, twin_robot.ROOT_JOINT, frame.axes[1:3],
-                             self.pipe_diameter_m / 2, stops={'front_tilt': self.config['front_tilt']['range_rad']})
+            twin_start.place(self.model, self.data, joints, twin_robot.ROOT_JOINT,
+                             (numpy.asarray(frame.origin), frame.axes[1:3], inside_m),
+                             stops={'front_tilt': self.config['front_tilt']['range_rad']})
         except twin_start.StartPoseError as refused:
             raise twin_start.StartPoseError('%s (world %s, %.0f mm, roll %.2f rad)' % (
                 refused, self.world.name, self.pipe_diameter_m * 1000, roll))

@@ -85,12 +85,18 @@ def deepest(model, data, root_body):
     return float(depth[worst]), model.body(int(owners[worst][robot[worst]][0])).name
 
 
-def _offsets(reach_m):
-    """Places across the pipe (d_left, d_up) m, nearest first."""
-    steps = int(reach_m / SEARCH_STEP_M)
-    grid = [(i * SEARCH_STEP_M, j * SEARCH_STEP_M) for i in range(-steps, steps + 1) for j in range(-steps, steps + 1)
-            if math.hypot(i, j) * SEARCH_STEP_M <= reach_m]
-    return sorted(grid, key=lambda o: (math.hypot(*o), o))
+def _places(start, axis_point, across, inside_m):
+    """Root positions across the pipe (world): ``start``, then nearest to it
+    first a grid in the cross-section through ``start`` within ``inside_m`` of the
+    pipe's axis, so the robot is never put outside the pipe, where nothing
+    is in its way."""
+    left, up = numpy.asarray(across[0], dtype=float), numpy.asarray(across[1], dtype=float)
+    centre = numpy.asarray(start, dtype=float)
+    centre = centre - left * numpy.dot(centre - axis_point, left) - up * numpy.dot(centre - axis_point, up)
+    steps = int(inside_m / SEARCH_STEP_M)
+    grid = [centre + SEARCH_STEP_M * (i * left + j * up) for i in range(-steps, steps + 1)
+            for j in range(-steps, steps + 1) if math.hypot(i, j) * SEARCH_STEP_M <= inside_m]
+    return [numpy.asarray(start, dtype=float)] + sorted(grid, key=lambda p: (round(float(numpy.linalg.norm(p - start)), 9), tuple(p)))
 
 
 def _pitched(quat, pitch):
@@ -107,29 +113,33 @@ def _fits(model, data, root_body):
     return deepest(model, data, root_body)
 
 
-def place(model, data, joints, root_joint, across, reach_m, stops=None):
-    """Set ``joints`` (checked against :func:`poseable_joints` with ``stops``) and move the robot's free ``root_joint``
-    across the pipe, and pitch it if it must, until the pose fits: ``across`` =
-    (left, up) unit vectors of the pipe's cross-section (world), ``reach_m``
-    how far to look. Level and near first. Returns (move m, pitch rad) or
-    raises :class:`StartPoseError`."""
+def place(model, data, joints, root_joint, bore, stops=None):
+    """Set ``joints`` (checked against :func:`poseable_joints` with ``stops``)
+    and move the robot's free ``root_joint`` across the pipe, and pitch it if
+    it must, until the pose fits. ``bore`` = (a point on the pipe's axis,
+    (left, up) unit vectors of its cross-section, how far from the axis the
+    root may be, m), all world. Level and near first. Returns (move m, pitch
+    rad) or raises :class:`StartPoseError`."""
+    axis_point, across, inside_m = bore
     joints = check(joints if joints is not None else {}, poseable_joints(model, stops))
     for name, angle in joints.items():
         data.qpos[model.jnt_qposadr[model.joint(name).id]] = angle
+    mujoco.mj_forward(model, data)
+    if not joints:
+        return numpy.zeros(3), 0.0
     root_body = model.body(model.jnt_bodyid[model.joint(root_joint).id]).name
     address = model.jnt_qposadr[model.joint(root_joint).id]
     position, orientation = slice(address, address + 3), slice(address + 3, address + 7)
     root, quat = data.qpos[position].copy(), data.qpos[orientation].copy()
     best = None
-    for pitch in (PITCHES_RAD if joints else (0.0,)):
+    for pitch in PITCHES_RAD:
         data.qpos[orientation] = _pitched(quat, pitch)
-        for left, up in _offsets(reach_m):
-            move = left * numpy.asarray(across[0]) + up * numpy.asarray(across[1])
-            data.qpos[position] = root + move
+        for spot in _places(root, axis_point, across, inside_m):
+            data.qpos[position] = spot
             depth, body = _fits(model, data, root_body)
-            if depth <= FIT_TOLERANCE_M or not joints:
+            if depth <= FIT_TOLERANCE_M:
                 mujoco.mj_forward(model, data)
-                return move, pitch
+                return spot - root, pitch
             if best is None or depth < best[0]:
                 best = (depth, body)
     data.qpos[position], data.qpos[orientation] = root, quat
