@@ -78,6 +78,7 @@ BAD_ARGS = [   # entry, argument, words of the error
     ('robot.launch', 'robot:=simulated', 'use sim, fil or real'),
     ('robot.launch', 'rate:=0', 'above 0'),
     ('robot.launch', 'orientation:=up', 'a number of rad'),
+    ('demo.launch', 'joints:=front_tilt 0.4', 'a YAML dict of joint: rad is needed'),
     ('Manager.launch', 'panel:=keyboard', 'use virtual, midi or none'),
     ('sim.launch', 'rate:=5', 'needs use_sim_time:=true'),
 ]
@@ -110,3 +111,19 @@ def test_the_pipe_diameter_reaches_the_manager_and_the_robot():
     assert dump.returncode == 0, dump.stderr
     assert "/pirate_manager/pipe_diameter: 110" in dump.stdout
     assert "/sim_robot/pipe_diameter: 110" in dump.stdout
+
+
+@pytest.mark.parametrize('entry', ['sim.launch', 'demo.launch', 'Manager.launch', 'robot.launch'])
+def test_start_joints_reach_the_simulated_robot(entry):
+    dump = subprocess.run(['roslaunch', '--dump-params', os.path.join(LAUNCH_DIR, entry),
+                           'joints:={front_tilt: 0.4, bend_iv: -0.3}'], capture_output=True, text=True, timeout=60)
+    assert dump.returncode == 0, dump.stderr
+    assert '/sim_robot/joints/front_tilt: 0.4' in dump.stdout and '/sim_robot/joints/bend_iv: -0.3' in dump.stdout
+
+
+def test_start_joints_reach_the_firmware_in_the_loop_robot():
+    dump = subprocess.run(['roslaunch', '--dump-params', os.path.join(LAUNCH_DIR, 'robot.launch'), 'robot:=fil',
+                           'joints:={bend_iv: -0.3}'], capture_output=True, text=True, timeout=60)
+    assert dump.returncode == 0, dump.stderr
+    assert '/fil_robot/joints/bend_iv: -0.3' in dump.stdout
+
