@@ -10,7 +10,7 @@ import threading
 
 from pirate.sequencer import clamp_state
 
-CLAMP_STRAIGHT = 0      # Pirate.action goal name
+CLAMP_STRAIGHT, CLAMP_SIDEWAYS, LEFT = 0, 1, 1     # Pirate.action goal names, option
 PARTLY_RAD = -0.4       # Bend IV past this: the rear is half way to its clamp
 TWIST_RAD = 0.5         # rotation of the twisted pose
 
@@ -61,6 +61,19 @@ def twisted(h, mm):
     h.prims.safe_hold()
 
 
+def clamped_by(name, option=0):
+    """The pose a Clamp PAB leaves: the goal run to success."""
+    def pose(h, mm):
+        reason, outcome = h.execute(h.goal(name, pipe_diameter=mm, option=option))
+        if reason or outcome.status != 'succeeded':
+            raise RuntimeError(reason or outcome.message)
+    return pose
+
+
 #: Pose name -> callable(harness, pipe diameter mm); raises when the pose cannot be made.
+#: The first five are the clamp sweep's (issue 10, figure 1); the clamped
+#: ones are where Home most often starts (issue 10.4).
 POSES = {'straight': lambda h, mm: None, 'front lifted': front_lifted, 'rear partly clamped': rear_partly_clamped,
-         'both clamped': both_clamped, 'twisted': twisted}
+         'both clamped': both_clamped, 'twisted': twisted,
+         'clamped straight': clamped_by(CLAMP_STRAIGHT), 'clamped left': clamped_by(CLAMP_SIDEWAYS, LEFT)}
+CLAMP_SWEEP_POSES = ('straight', 'front lifted', 'rear partly clamped', 'both clamped', 'twisted')
