@@ -86,17 +86,17 @@ def deepest(model, data, root_body):
 
 
 def _places(start, axis_point, across, inside_m):
-    """Root positions across the pipe (world): ``start``, then nearest to it
-    first a grid in the cross-section through ``start`` within ``inside_m`` of the
-    pipe's axis, so the robot is never put outside the pipe, where nothing
-    is in its way."""
+    """Root positions to try, world: ``start`` first, then a grid in the
+    cross-section through it, nearest first, within ``inside_m`` of the
+    pipe's axis (so the robot is never put outside the pipe, where nothing
+    is in its way)."""
     left, up = numpy.asarray(across[0], dtype=float), numpy.asarray(across[1], dtype=float)
-    centre = numpy.asarray(start, dtype=float)
-    centre = centre - left * numpy.dot(centre - axis_point, left) - up * numpy.dot(centre - axis_point, up)
+    start = numpy.asarray(start, dtype=float)
+    centre = start - left * numpy.dot(start - axis_point, left) - up * numpy.dot(start - axis_point, up)
     steps = int(inside_m / SEARCH_STEP_M)
     grid = [centre + SEARCH_STEP_M * (i * left + j * up) for i in range(-steps, steps + 1)
             for j in range(-steps, steps + 1) if math.hypot(i, j) * SEARCH_STEP_M <= inside_m]
-    return [numpy.asarray(start, dtype=float)] + sorted(grid, key=lambda p: (round(float(numpy.linalg.norm(p - start)), 9), tuple(p)))
+    return [start] + sorted(grid, key=lambda p: float(numpy.linalg.norm(p - start)))
 
 
 def _pitched(quat, pitch):
@@ -131,10 +131,10 @@ def place(model, data, joints, root_joint, bore, stops=None):
     address = model.jnt_qposadr[model.joint(root_joint).id]
     position, orientation = slice(address, address + 3), slice(address + 3, address + 7)
     root, quat = data.qpos[position].copy(), data.qpos[orientation].copy()
-    best = None
+    best, places = None, _places(root, axis_point, across, inside_m)
     for pitch in PITCHES_RAD:
         data.qpos[orientation] = _pitched(quat, pitch)
-        for spot in _places(root, axis_point, across, inside_m):
+        for spot in places:
             data.qpos[position] = spot
             depth, body = _fits(model, data, root_body)
             if depth <= FIT_TOLERANCE_M:
@@ -151,7 +151,8 @@ def place(model, data, joints, root_joint, bore, stops=None):
 
 
 def part_name(body):
-    """The robot's word for a twin body: 'wheel_body_22' -> 'wheel of board 22', 'bend_iv_module' -> 'Bend IV module'."""
+    """The robot's word for a twin body: 'wheel_body_22' -> 'wheel of board 22',
+    'bend_iv_module' -> 'Bend IV module'."""
     if body.startswith('wheel_body_'):
         return 'wheel of board %s' % body[len('wheel_body_'):]
     words = body.split('_')
