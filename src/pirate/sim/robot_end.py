@@ -29,11 +29,10 @@ def of_node(get_param, logfatal):
     A bad one is logged fatal with its reason and ends the node
     (SystemExit 1) before it publishes anything: a robot that is not the one
     asked for must not start."""
-    seed = get_param('~seed', -1)
     try:
         return make_robot(world=get_param('~world', ''), pipe_diameter=get_param('~pipe_diameter', 90),
                           orientation=float(get_param('~orientation', 1.5707963)), joints=get_param('~joints', {}),
-                          seed=int(seed) if int(seed) >= 0 else None)
+                          seed=int(get_param('~seed', -1)))     # the twin takes a negative seed as no noise
     except ValueError as refused:      # WorldError, StartPoseError, a diameter without a world, not a number
         logfatal('cannot start the simulated robot: %s' % refused)
         raise SystemExit(1)
