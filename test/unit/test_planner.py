@@ -330,6 +330,22 @@ def test_a_turn_the_junction_pab_does_not_take_yet_is_refused_by_the_real_server
     planner.check_runnable(run(world(BEND_LEFT, {'pit': 300, 'target': 3000}), 'pit', 'target'))
 
 
+def test_the_way_back_through_a_junction_is_refused_while_no_pab_takes_it_rear_first():
+    """The plan takes the bend rear first on the way back; the junction PAB
+    refuses a negative search distance whatever the robot does, so the route
+    is refused before anything moves (it used to clamp and drive up to the
+    bend, then be rejected there); the way out alone still runs, and a server
+    that took junctions rear first would run the round trip."""
+    round_trip = run(world(BEND_LEFT, {'pit': 300, 'target': 3000}), 'pit', 'target', 'pit')
+    assert not goals.built('MITRE_BEND', 'LEFT', rear_first=True) and goals.built('DRIVE', rear_first=True)
+    with pytest.raises(planner.PlanError, match=r"step 6 \(MITRE_BEND LEFT, mitre_1\): the Pirate Server cannot take "
+                                                r"MITRE_BEND LEFT rear first yet \(taking a junction rear first is "
+                                                r"not built\); the robot cannot take this route back through mitre_1"):
+        planner.check_runnable(round_trip)
+    planner.check_runnable(run(world(BEND_LEFT, {'pit': 300, 'target': 3000}), 'pit', 'target'))
+    planner.check_runnable(round_trip, built=lambda pab, option=None, rear_first=False: True)
+
+
 def test_a_junction_direction_the_goal_cannot_carry_is_refused(monkeypatch):
     monkeypatch.setitem(goals.PAB_OPTIONS, 'MITRE_BEND', ('LEFT', 'RIGHT'))   # a goal interface without DOWN
     net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'mitre', 'turn': 'down'},

@@ -19,10 +19,13 @@ PAB_OPTIONS = {'CLAMP_SIDEWAYS': ('LEFT', 'RIGHT'), 'T_JOINT': ('LEFT', 'RIGHT',
 PAB_FIELDS = {'DRIVE': ('distance', 'speed')}
 
 
-def built(pab, option=None):
+def built(pab, option=None, rear_first=False):
     """True when the Pirate Server can run PAB ``pab`` (a name of :data:`CODES`),
-    with ``option`` (a name of :data:`OPTIONS`) when one is given."""
+    with ``option`` (a name of :data:`OPTIONS`) when one is given, backwards
+    (a junction searched rear first) when ``rear_first``."""
     pab_class = PABS[CODES[pab]][1]
     if pab_class is None:
         return False
-    return option is None or pab_class.takes(CODES[pab], OPTIONS[option])
+    if option is None and not rear_first:
+        return True
+    return pab_class.takes(CODES[pab], OPTIONS.get(option), rear_first)

@@ -25,6 +25,7 @@ import collections
 
 from pirate.sequencer import goals
 from pirate.sequencer.junctions import STRAIGHT_CLAMP, is_turn, label, pab_start_clamps, required_clamp
+from pirate.sequencer.pabs.junction import REAR_FIRST_WHY
 from pirate.world.network import turns_at_corner
 
 #: One junction of the map, as the route meets it.
@@ -211,11 +212,12 @@ def route_of(lines):
 def check_runnable(route_plan, built=None):
     """Raise :class:`PlanError` naming the first step the Pirate Server cannot
     run (a PAB it does not have yet, an option its goal cannot carry, or a
-    junction PAB that does not start from the clamp the route holds there),
+    junction PAB that does not start from the clamp the route holds there, a
+    junction taken rear first on the way back while the PAB does not take it so),
     so that a mission through it is refused before the robot moves rather
     than stopped at that junction (a junction PAB that does not take that
-    direction yet included). ``built(pab, option)``: default
-    pirate.sequencer.goals.built."""
+    direction yet included). ``built(pab, option, rear_first=False)``: default
+    pirate.sequencer.goals.built (asked with ``rear_first`` only for a step on the way back)."""
     built = built or goals.built
     for number, step in enumerate(route_plan.steps, 1):
         where = 'step %d (%s%s%s)' % (number, step.pab, ' %s' % step.option if step.option else '',
@@ -227,7 +229,16 @@ def check_runnable(route_plan, built=None):
         if not built(step.pab, step.option or None):
             raise PlanError('%s: the Pirate Server cannot run %s%s yet; the robot cannot take this route'
                             % (where, step.pab, ' %s' % step.option if step.option else ''))
+        if _rear_first(step) and not built(step.pab, step.option or None, rear_first=True):
+            raise PlanError('%s: the Pirate Server cannot take %s %s rear first yet (%s); the robot cannot take '
+                            'this route back through %s' % (where, step.pab, step.option, REAR_FIRST_WHY,
+                                                            step.junction.name))
         _check_start_clamp(where, step)
+
+
+def _rear_first(step):
+    """A junction step on the way back: searched backwards, the rear V leading."""
+    return step.junction is not None and step.distance_mm < 0
 
 
 def _check_start_clamp(where, step):

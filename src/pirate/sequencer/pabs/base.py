@@ -88,9 +88,10 @@ class Pab(object):
         return cls()
 
     @classmethod
-    def takes(cls, name, option):
+    def takes(cls, name, option, rear_first=False):
         """False when this PAB refuses goal ``name`` with ``option`` whatever the
-        robot's state (a direction it does not take yet); codes of Pirate.action."""
+        robot's state (a direction it does not take yet); codes of Pirate.action.
+        ``rear_first``: the goal searches backwards (a negative distance)."""
         return True
 
     def check(self, goal, view, guards):

@@ -261,6 +261,9 @@ NOT_TAKEN = {
             'robot upside down',
 }
 
+#: Why a junction PAB refuses a negative search distance whatever the robot's state.
+REAR_FIRST_WHY = 'taking a junction rear first is not built'
+
 #: Why a turn's speed has a range (config/guards_<mm>.yaml turn goal_speed_min / goal_speed_max;
 #: bench/junction_turn_probe --speed, notes/issue-10.md "A turn's speed").
 SPEED_WHY = ("measured in the twin: faster, the rear's wheels pushed the front V, clamped at the corner, on "
@@ -290,9 +293,9 @@ class TakeJunction(Pab):
         return cls(kind, label, name, direction, clamps)
 
     @classmethod
-    def takes(cls, name, option):
+    def takes(cls, name, option, rear_first=False):
         direction = JUNCTIONS[name][3].get(option, (None,))[0]
-        return (JUNCTIONS[name][0], direction) in TAKEN
+        return not rear_first and (JUNCTIONS[name][0], direction) in TAKEN
 
     def __init__(self, kind, label, name, direction, clamps):
         self.kind, self.label, self.name, self.direction, self.clamps = kind, label, name, direction, clamps
@@ -358,8 +361,8 @@ class TakeJunction(Pab):
     def _check_distance(goal, guards):
         limit = float(guards.row('junction')['max_search_mm'])
         if not math.isfinite(goal.distance) or goal.distance < 0 or goal.distance > limit:
-            return ('junction search distance %r mm outside [0, %.0f] mm (0: the default; taking a '
-                    'junction rear first is not built)' % (goal.distance, limit))
+            return ('junction search distance %r mm outside [0, %.0f] mm (0: the default; %s)'
+                    % (goal.distance, limit, REAR_FIRST_WHY))
         return None
 
     def _check_clamp(self, view, guards):
