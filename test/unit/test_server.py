@@ -117,6 +117,15 @@ def test_drive_refused_with_clamp_angles_short_of_the_wall(rig):
     refused(server, Goal(DRIVE, distance=50.0), 'DRIVE', 'clamped')
 
 
+def test_drive_in_the_wrong_diameter_says_what_it_senses_with_which_guards(rig):
+    """Clamped in 90 mm, a 110 mm Drive reads the V's angles against the
+    110 mm guards: the refusal names them and what each part is by them."""
+    server, feed, _, _, _ = rig
+    feed.push(state(efforts=ON_WALL, **CLAMPED))
+    refused(server, Goal(DRIVE, pipe_diameter=110, distance=50.0), 'by the 110 mm guards it senses the front part',
+            'the rear')
+
+
 def test_drive_speed_above_maximum(rig):
     server, feed, _, _, _ = rig
     feed.push(state(efforts=ON_WALL, **CLAMPED))

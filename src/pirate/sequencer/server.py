@@ -127,7 +127,10 @@ class PirateServer(object):
         if view is None or not self.feed.fresh():
             return '%s: no robot state (is the robot connected and the state node running?)' % name
         if pab_class.requires_clamped and not robot_clamped(view, guards):
-            return '%s needs the robot clamped (%s); it is not' % (name, IDLE_CLAMPED)
+            front, rear = clamp_state.sensed(guards, view)
+            # the diameter is named: clamped in 90 mm, a 110 mm goal reads the robot as unclamped
+            return ('%s needs the robot clamped (%s); by the %d mm guards it senses the front part %s, the rear %s'
+                    % (name, IDLE_CLAMPED, guards.pipe_diameter, front, rear))
         return self._pab_for(goal).check(goal, view, guards)
 
     def _pab_for(self, goal):

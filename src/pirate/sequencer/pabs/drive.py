@@ -154,7 +154,8 @@ class Progress(object):
             self.allowed_s = self.window_s
         elif view.stamp - self.mark_s > self.allowed_s:
             raise PabFailed('no odometry progress for %.1f s with the wheels commanded '
-                            '(odometry %.1f mm, the median of the drive boards: boards silent or wheels slipping)'
+                            '(odometry %.1f mm, the median of the drive boards: boards silent, or the wheels stalled, '
+                            'e.g. the robot against an end cap or an obstacle)'
                             % (view.stamp - self.mark_s, view.odometry))
         return True
 
