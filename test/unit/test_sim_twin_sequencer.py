@@ -139,3 +139,19 @@ def test_a_partial_unclamp_leaves_an_open_v_and_the_clamped_part_holds_its_roll(
         angles = h.feed.latest().angles
         assert angles['bend_i'] < 0 < angles['bend_ii'], angles         # still a V, open
         assert abs(h.ground_truth()['roll'] - before) < 0.05             # twin: 0.012 rad
+
+
+def test_a_clamp_with_a_wider_pipes_guards_says_it_stood_on_the_wall_short_of_them():
+    """A 110 mm Clamp Straight in the 90 mm pipe: the rear V meets the wall
+    at about -1.02 rad, short of the 110 mm guard (-1.25), and stands there
+    until the primitive's timeout. The abort says so, with the angle it
+    stood at and the guards it was judged by, and leaves the safe hold."""
+    with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=math.pi / 2) as h:
+        robot_wait(h, 1.0)
+        reason, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT, pipe_diameter=110))
+        assert_ended(reason, outcome, 'aborted')
+        assert 'clamp rear' in outcome.message and 'not reached within' in outcome.message, outcome.message
+        assert 'bend_iv presses the wall at -1.0' in outcome.message, outcome.message
+        assert 'short of its guard -1.25: the wall is nearer than the 110 mm guards expect' in outcome.message
+        sent = h.wires['setpoint'].sent[-1][1]
+        assert all(sent[i] == 0 for i in SAFE_INDICES.values()), sent
