@@ -1,7 +1,8 @@
 """Home from any pose, in the physics twin (issue 10.4).
 
 Clamped straight, clamped sideways, partly clamped (a clamp cancelled
-half way), front lifted only: Home ends with both parts free (angles and
+half way), front lifted only, a turn's steer left where it found no
+opening: Home ends with both parts free (angles and
 springs), lying on the pipe bottom (ground truth: the rotational module
 back at the height and place where the free robot settled before the test
 posed it, and no longer rolling), the rotation aligned, the front down and
@@ -17,12 +18,12 @@ import pytest
 
 from pirate.sequencer import clamp_state
 from pirate.sim.harness import SimHarness
-from pirate.sim.twin_robot import ROTATIONAL_FRONT
+from pirate.sim.twin_robot import ROOT, ROTATIONAL_FRONT
 from test_sequencer_sim import run_bounded
 from test_sim_twin_sequencer import robot_wait
 
 SPEEDUP = 10.0
-CLAMP_STRAIGHT, CLAMP_SIDEWAYS, HOME, RIGHT = 0, 1, 5, 2
+CLAMP_STRAIGHT, CLAMP_SIDEWAYS, MITRE_BEND, HOME, LEFT, RIGHT = 0, 1, 3, 5, 1, 2
 REST_M = 0.006          # m: height of the free robot's resting place; Home leaves the bends
                         # at their open guards (up to 0.2 rad), not straight: a few mm of
                         # difference (clamped sideways, the centre sits 17 mm aside and 11 mm
@@ -47,6 +48,16 @@ def partly(h):
     assert 'rear partly clamped' in h.server.status()
 
 
+def steered(h):
+    """A mitre LEFT sent in a straight pipe: it steers the front (the front
+    module lifted toward the side, near move_front_turn), finds no opening
+    within the goal's distance and aborts there."""
+    clamp(h, CLAMP_SIDEWAYS, LEFT)
+    reason, outcome = run_bounded(h, h.goal(MITRE_BEND, option=LEFT, distance=300.0))
+    assert reason is None and outcome.status == 'aborted' and outcome.junction_missing, outcome.message
+    assert h.feed.latest().angles['front_tilt'] > h.server.book.for_diameter(90).row('move_front_home')['above']
+
+
 def lifted(h):
     h.prims.use(h.server.book.for_diameter(90))
     h.start_robot()
@@ -58,6 +69,7 @@ START = {
     'clamped sideways': (0.0, lambda h: clamp(h, CLAMP_SIDEWAYS, RIGHT)),
     'partly clamped': (math.pi / 2, partly),
     'front lifted': (math.pi / 2, lifted),
+    'steered, no opening': (math.pi / 2, steered),
 }
 
 
@@ -83,3 +95,36 @@ def test_home_from_any_pose(start):
         assert view.angles['front_tilt'] <= guards.move('move_front_down').guard
         assert abs(view.velocity) < 1.0
         assert h.server.status() == 'Idle Unclamped'
+
+
+def test_home_after_a_turn_cancelled_while_steering_in_leaves_the_robot_loose():
+    """A mitre LEFT cancelled 20 robot s in, its front steered into the bend,
+    then Home: it succeeds, and nothing presses the wall harder than the
+    robot's weight (ground truth: the wheels' normal forces). Lowering the
+    front module into the opening pried the Bend I wheel on the wall with
+    57 N (five times the weight) after a Home that read as unclamped; Home
+    now leaves that front lifted and says so (bench/junction_turn_resume
+    --then home)."""
+    with SimHarness(speedup=SPEEDUP, world='bend_left_90', orientation=math.pi) as h:
+        robot_wait(h, 1.0)
+        clamp(h, CLAMP_SIDEWAYS, LEFT)
+        goal = h.goal(MITRE_BEND, option=LEFT, distance=800.0)
+        assert h.server.reserve(goal) is None
+        worker = threading.Thread(target=h.server.run, args=(goal,), daemon=True)
+        worker.start()
+        robot_wait(h, 20.0)
+        h.server.cancel()
+        worker.join(30.0)
+        robot_wait(h, 2.0)
+        reason, outcome = run_bounded(h, h.goal(HOME))
+        assert reason is None and outcome.status == 'succeeded', outcome.message
+        robot_wait(h, 1.0)
+        model = h.model.model
+        weight_n = float(model.body_subtreemass[model.body(ROOT).id]) * 9.81
+        pressing_n = sum(h.ground_truth()['wheel_contacts'].values())
+        view, guards = h.feed.latest(), h.server.book.for_diameter(90)
+        assert pressing_n <= 1.25 * weight_n, (pressing_n, weight_n, outcome.message, view.angles)
+        along = view.angles['bend_i'] <= guards.row('home_front_down')['bend_i_max_rad']
+        assert along == (view.angles['front_tilt'] <= guards.move('move_front_down').guard), view.angles
+        assert along or 'front module left lifted' in outcome.message, outcome.message
+        assert clamp_state.sensed(guards, view) == (clamp_state.FREE, clamp_state.FREE), (view.angles, view.efforts)

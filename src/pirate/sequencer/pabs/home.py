@@ -8,7 +8,16 @@ Table 4.5): otherwise the next Clamp Straight starts with the rotation at
 its limit and loops there (issue 10). An aligned robot runs the report's
 steps unchanged. The wheels are stopped first: Home starts from any pose,
 a cancelled Drive included. Each unclamp waits for its open guard, so a
-part that was only partly clamped (or free) passes at once.
+part that was only partly clamped (or free) passes at once. A front module
+lifted beyond a clamp's lift (a turn's steer leaves it near 1.1 rad) is
+lowered to that lift first: lifted that far its nose met the wall as
+Bend I opened, and the unclamp stood still (twin, a mitre LEFT that found
+no opening in a straight pipe, then Home). The front is lowered last only
+while Bend I says the front part lies along the pipe: bent further than a
+straight pipe allows, it points into an opening (a turn cancelled while
+steering in), and lowering it there pried the robot across the junction
+(twin: 57-105 N on the Bend I wheel, five times the robot's weight, after
+a Home that read as unclamped); it is left lifted and the result says so.
 """
 import collections
 
@@ -16,29 +25,45 @@ from pirate.sequencer.guards import CLAMP_BENDS
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, StateMachine, Transition
 
 CHANGE_MODES = 'change control modes'
+LOWERING_FRONT = 'lowering the front'
 UNCLAMPING_FRONT = 'unclamping front'
 ALIGNING = 'aligning'
 UNCLAMPING_REAR = 'unclamping rear'
 MOVING_FRONT_DOWN = 'moving front down'
+#: The guard row (config/guards_<mm>.yaml) of lowering a lifted front.
+LOWER_ROW = 'move_front_home'
+#: The guard row of Home's last step, the front down (config/sequencer.yaml).
+DOWN_ROW = 'move_front_down'
+#: The row of how far Bend I may bend with the front part along a straight pipe.
+ALONG_ROW = 'home_front_down'
 
-#: What Home's guards look at: aligned = |rotation| within the align tolerance.
-Facts = collections.namedtuple('Facts', 'aligned')
+#: What Home's guards look at: aligned = |rotation| within the align tolerance;
+#: lifted = front tilt above the ``above`` of the diameter's ``move_front_home`` row;
+#: along = Bend I at most the ``bend_i_max_rad`` of its ``home_front_down`` row.
+Facts = collections.namedtuple('Facts', 'aligned lifted along', defaults=(False, True))
 
 ALIGNED = Guard('aligned', lambda f: f.aligned)
 NOT_ALIGNED = Guard('NOT aligned', lambda f: not f.aligned)
+LIFTED = Guard('front lifted', lambda f: f.lifted)
+NOT_LIFTED = Guard('NOT front lifted', lambda f: not f.lifted)
+ALONG = Guard('front along the pipe', lambda f: f.along)
+NOT_ALONG = Guard('NOT front along the pipe', lambda f: not f.along)
 
 MACHINE = StateMachine(CHANGE_MODES, (
-    Transition(CHANGE_MODES, UNCLAMPING_FRONT, ALWAYS),
+    Transition(CHANGE_MODES, UNCLAMPING_FRONT, NOT_LIFTED),
+    Transition(CHANGE_MODES, LOWERING_FRONT, LIFTED),
+    Transition(LOWERING_FRONT, UNCLAMPING_FRONT, ALWAYS),
     Transition(UNCLAMPING_FRONT, UNCLAMPING_REAR, ALIGNED),
     Transition(UNCLAMPING_FRONT, ALIGNING, NOT_ALIGNED),
     Transition(ALIGNING, UNCLAMPING_REAR, ALWAYS),
-    Transition(UNCLAMPING_REAR, MOVING_FRONT_DOWN, ALWAYS),
+    Transition(UNCLAMPING_REAR, MOVING_FRONT_DOWN, ALONG),
+    Transition(UNCLAMPING_REAR, END, NOT_ALONG),
     Transition(MOVING_FRONT_DOWN, END, ALWAYS),
 ))
 
 
 class Home(Pab):
-    """Unclamp front, align if needed, unclamp rear, lower the front module."""
+    """Lower a lifted front, unclamp front, align if needed, unclamp rear, lower the front module."""
 
     name = 'Home'
     machine = MACHINE
@@ -46,14 +71,18 @@ class Home(Pab):
     def actions(self):
         return {
             CHANGE_MODES: self._change_modes,
+            LOWERING_FRONT: lambda ctx: ctx.prims.move_front(LOWER_ROW),
             UNCLAMPING_FRONT: lambda ctx: self._unclamp(ctx, 'front'),
             ALIGNING: lambda ctx: ctx.prims.align(),
             UNCLAMPING_REAR: lambda ctx: self._unclamp(ctx, 'rear'),
-            MOVING_FRONT_DOWN: lambda ctx: ctx.prims.move_front('move_front_down'),
+            MOVING_FRONT_DOWN: lambda ctx: ctx.prims.move_front(DOWN_ROW),
         }
 
     def facts(self, ctx):
-        return Facts(aligned=abs(ctx.feed.latest().angles['rotation']) <= ctx.guards.align_tolerance)
+        angles = ctx.feed.latest().angles
+        return Facts(aligned=abs(angles['rotation']) <= ctx.guards.align_tolerance,
+                     lifted=angles['front_tilt'] > float(ctx.guards.row(LOWER_ROW)['above']),
+                     along=angles['bend_i'] <= _bend_i_max(ctx))
 
     @staticmethod
     def _unclamp(ctx, part):
@@ -80,4 +109,15 @@ class Home(Pab):
         ctx.prims.change_control_mode('front_tilt', 'pwm')
 
     def summary(self, ctx):
-        return 'unclamped and lying in the pipe, %d motion primitives' % len(ctx.prims.executed)
+        count = len(ctx.prims.executed)
+        angles = ctx.feed.latest().angles
+        if angles['front_tilt'] <= ctx.guards.move(DOWN_ROW).guard:     # lowered (the ALONG path)
+            return 'unclamped and lying in the pipe, %d motion primitives' % count
+        return ('unclamped, the front module left lifted at %.2f rad: Bend I at %+.2f rad (a straight %d mm pipe '
+                'allows %.2f) points it into an opening, where lowering it pries the robot against the junction; '
+                '%d motion primitives' % (angles['front_tilt'], angles['bend_i'], ctx.guards.pipe_diameter,
+                                          _bend_i_max(ctx), count))
+
+
+def _bend_i_max(ctx):
+    return float(ctx.guards.row(ALONG_ROW)['bend_i_max_rad'])
