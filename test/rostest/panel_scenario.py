@@ -62,14 +62,15 @@ class PanelScenario(unittest.TestCase):
         self.lock = threading.Lock()
         self.angles, self.leds, self.logs, self.statuses, self.setpoints = {}, {}, [], set(), None
         self.told, self.results = [], []
-        rospy.Subscriber(names.OPERATOR_TOPIC, String, self._on_operator)
         self.other = SimpleGoalClient(names.PIRATE_ACTION, PirateAction)
-        rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state)
-        rospy.Subscriber(names.MIDI_OUTPUT_TOPIC, MidiOutput, self._on_led)
+        #: What the steps hear, each from a publisher that exists from the start.
+        self.ears = [rospy.Subscriber(names.OPERATOR_TOPIC, String, self._on_operator),
+                     rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state),
+                     rospy.Subscriber(names.MIDI_OUTPUT_TOPIC, MidiOutput, self._on_led),
+                     rospy.Subscriber(names.PIRATE_ACTION + '/status', GoalStatusArray, self._on_status),
+                     rospy.Subscriber(names.PIRATE_ACTION + '/result', PirateActionResult, self._on_result),
+                     rospy.Subscriber(names.SETPOINT_TOPIC, SetpointArray, self._on_setpoints)]
         rospy.Subscriber('/rosout', Log, self._on_log)
-        rospy.Subscriber(names.PIRATE_ACTION + '/status', GoalStatusArray, self._on_status)
-        rospy.Subscriber(names.PIRATE_ACTION + '/result', PirateActionResult, self._on_result)
-        rospy.Subscriber(names.SETPOINT_TOPIC, SetpointArray, self._on_setpoints)
         self.pub = rospy.Publisher(names.MIDI_INPUT_TOPIC, MidiInput, queue_size=100)
 
     # --- recorders ---------------------------------------------------------------
@@ -110,7 +111,8 @@ class PanelScenario(unittest.TestCase):
                 if condition():
                     return
             time.sleep(POLL_S)
-        self.fail('timed out after %.1f s waiting for %s' % (timeout_s, what))
+        with self.lock:
+            self.fail('timed out after %.1f s waiting for %s' % (timeout_s, what() if callable(what) else what))
 
     def _during(self, condition, for_s, what):
         deadline = time.monotonic() + for_s
@@ -121,6 +123,9 @@ class PanelScenario(unittest.TestCase):
 
     def _send(self, channel, value):
         self.pub.publish(MidiInput(channel=int(channel), value=int(value)))
+
+    def _deaf(self):
+        return [ear.name for ear in self.ears if ear.get_num_connections() == 0]
 
     # --- steps -----------------------------------------------------------------------
     def step_press(self, channel):
@@ -176,7 +181,7 @@ class PanelScenario(unittest.TestCase):
     def step_wait_goal(self, arg):
         code = STATUS[arg['status']]
         self._until(lambda: code in self.statuses, arg.get('timeout_s', 15),
-                    'goal status %s (seen %s)' % (arg['status'], sorted(self.statuses)))
+                    lambda: 'goal status %s (seen %s)' % (arg['status'], sorted(self.statuses)))
 
     def step_wait_setpoints_zero(self, arg):
         indices = [tables.element(name).index for name in arg['elements']]
@@ -185,12 +190,12 @@ class PanelScenario(unittest.TestCase):
 
     def step_wait_operator(self, arg):
         self._until(lambda: any(arg['contains'] in line for line in self.told),
-                    arg.get('timeout_s', 10), 'the panel to say %r (said %s)' % (arg['contains'], self.told))
+                    arg.get('timeout_s', 10), lambda: 'the panel to say %r (said %s)' % (arg['contains'], self.told))
 
     def step_wait_result(self, arg):
         index = arg['index']
         self._until(lambda: len(self.results) > index, arg.get('timeout_s', 60),
-                    'result %d (have %d)' % (index, len(self.results)))
+                    lambda: 'result %d (have %d)' % (index, len(self.results)))
         with self.lock:
             msg = self.results[index]
         result = msg.result
@@ -209,6 +214,13 @@ class PanelScenario(unittest.TestCase):
     # --- the test ----------------------------------------------------------------------
     def test_scenario(self):
         steps = rospy.get_param('~steps')
+        # Each subscription connects to its publisher on its own thread, and
+        # rospy retries a failed connection after 1, 2, 4 ... s: on a busy
+        # machine the operator's topic was still unconnected 10 s into a
+        # scenario whose LEDs were (CI, stop 26). A step may only listen on
+        # a connected topic.
+        self._until(lambda: all(ear.get_num_connections() > 0 for ear in self.ears), 60,
+                    lambda: 'our subscribers to connect (unconnected: %s)' % self._deaf())
         self._until(lambda: bool(self.angles), 30, 'the robot state on %s' % names.ROBOT_STATE_TOPIC)
         self._until(lambda: self.pub.get_num_connections() > 0, 30, 'the manager to subscribe the panel')
         ready.wait_robot_connected(60)
