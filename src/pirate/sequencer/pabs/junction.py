@@ -92,6 +92,7 @@ from pirate.sequencer import clamp_state
 from pirate.sequencer.junction_sensing import JunctionSensor
 from pirate.sequencer.junctions import TURNS
 from pirate.sequencer.pabs import codes
+from pirate.sequencer.pabs import corner as corner_sensing
 from pirate.sequencer.pabs import turn_motions as motions
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, PabFailed, StateMachine, Transition
 from pirate.sequencer.pabs.clamp import Clamp, in_region, region_around
@@ -369,7 +370,7 @@ class TakeJunction(Pab):
         """Accept a robot the table can start (or, for a turn, resume) from;
         else the reason, saying where in a corner the robot senses it is."""
         facts = self.sensed_facts(guards, view)
-        corner = _corner_text(view, facts)
+        corner = corner_sensing.text(view, facts._asdict())
         if self.turning:
             if _first_step(facts) is not None:
                 return None
@@ -378,7 +379,7 @@ class TakeJunction(Pab):
         if sensed != (clamp_state.FULL, clamp_state.FULL) or not self._held(view, guards) or corner:
             return self._start_text(view, guards) + (
                 '; it is half round a corner toward the %s (%s): re-send that turn to finish it'
-                % (_side_turned(guards, view), corner) if corner else '')
+                % (corner_sensing.side_turned(guards, view), corner) if corner else '')
         return None
 
     def _start_text(self, view, guards):
@@ -390,10 +391,10 @@ class TakeJunction(Pab):
         """Why a turn can neither start nor resume from what the robot senses."""
         clamp = 'Clamp Sideways %s' % self.direction.upper()
         if corner and not facts.toward:
+            side = corner_sensing.side_turned(guards, view)
             return ('%s %s cannot finish this turn: the robot is half round a corner toward the %s (%s; roll %.2f '
-                    'rad): re-send the turn toward the %s' % (self.label, self.direction.upper(),
-                                                              _side_turned(guards, view), corner, view.orientation,
-                                                              _side_turned(guards, view)))
+                    'rad): re-send the turn toward the %s' % (self.label, self.direction.upper(), side, corner,
+                                                              view.orientation, side))
         if corner:
             return ('%s %s cannot finish the turn from here: half round the corner (%s) with the robot %s; it '
                     'resumes with the rear clamped before the middle has swung, or the front clamped after'
@@ -408,7 +409,7 @@ class TakeJunction(Pab):
     def sensed_facts(self, guards, view, found=False):
         """:data:`Facts` of the robot in ``view`` for this goal (``found``: the PAB's own, not sensed)."""
         sensed = clamp_state.sensed(guards, view)
-        corner = _corner_facts(guards, view) if guards.has('turn') else {}
+        corner = corner_sensing.facts(guards, view)
         return Facts(found=found, front=sensed.front == clamp_state.FULL, rear=sensed.rear == clamp_state.FULL,
                      straight=in_region(view.orientation, region_around(guards, 'straight', self._target())),
                      turn=self.turning,
@@ -596,36 +597,6 @@ def _first_step(facts):
     """The state the table enters from CHANGE_MODES with ``facts``, or None."""
     fired = [t.target for t in MACHINE.exits(CHANGE_MODES) if t.guard.test(facts)]
     return fired[0] if len(fired) == 1 else None
-
-
-def _corner_facts(guards, view):
-    """The sensed corner facts of :data:`Facts` (``turn`` row angles, rad)."""
-    row, angles = guards.row('turn'), view.angles
-    return dict(front_round=motions.steered(row, view),
-                middle_round=angles['bend_iii'] >= float(row['resume_middle_rad']),
-                middle_swung=angles['bend_iii'] >= float(row['swing_rad']),
-                rear_round=angles['bend_iv'] >= float(row['resume_rear_rad']))
-
-
-def _corner_text(view, facts):
-    """What says the robot is round a corner ('' when nothing does), for a refusal."""
-    angles, said = view.angles, []
-    if facts.front_round:
-        said.append('Bend II %.2f rad: the front turned into the new pipe' % angles['bend_ii'])
-    if facts.middle_round or facts.middle_swung:
-        said.append('Bend III %.2f rad: the middle swinging round' % angles['bend_iii'])
-    if facts.rear_round:
-        said.append('Bend IV %+.2f rad: the rear V coming round' % angles['bend_iv'])
-    return ', '.join(said)
-
-
-def _side_turned(guards, view):
-    """LEFT / RIGHT: the side (Fig 4.7) whose nominal band holds the roll; clamped
-    sideways toward a turn the robot lies on it. 'unknown side' otherwise."""
-    for clamp in ('sideways LEFT', 'sideways RIGHT'):
-        if in_region(view.orientation, region_around(guards, 'nominal', ORIENTATIONS[clamp])):
-            return clamp.split()[1]
-    return 'unknown side'
 
 
 def _taken_text():
