@@ -128,3 +128,36 @@ def test_home_after_a_turn_cancelled_while_steering_in_leaves_the_robot_loose():
         assert along == (view.angles['front_tilt'] <= guards.move('move_front_down').guard), view.angles
         assert along or 'front module left lifted' in outcome.message, outcome.message
         assert clamp_state.sensed(guards, view) == (clamp_state.FREE, clamp_state.FREE), (view.angles, view.efforts)
+
+
+def test_home_half_round_a_corner_is_refused_and_the_turn_re_sent_finishes_it():
+    """A mitre LEFT cancelled once the front has turned into the new pipe
+    (Bend II past the turn row's steered_rad, as the robot senses it): Home
+    is refused before anything moves, naming the way out; the turn re-sent
+    finishes, and Home then leaves the robot loose. Before, Home's unclamp
+    pushed 15 s against the junction's walls and aborted (bench/
+    junction_turn_resume --then home, cancels at 30 and 35 s)."""
+    with SimHarness(speedup=SPEEDUP, world='bend_left_90', orientation=math.pi) as h:
+        robot_wait(h, 1.0)
+        clamp(h, CLAMP_SIDEWAYS, LEFT)
+        turn, steered_rad = h.goal(MITRE_BEND, option=LEFT, distance=800.0), h.server.book.for_diameter(90).row(
+            'turn')['steered_rad']
+        assert h.server.reserve(turn) is None
+        worker = threading.Thread(target=h.server.run, args=(turn,), daemon=True)
+        worker.start()
+        assert h.feed.wait_until(lambda v: v.angles['bend_ii'] >= steered_rad, 120.0, 'the front turned in')
+        h.server.cancel()
+        worker.join(30.0)
+        robot_wait(h, 2.0)
+        before = dict(h.feed.latest().angles)
+        reason, _ = run_bounded(h, h.goal(HOME))
+        assert reason is not None and 're-send the turn toward the LEFT to finish it, then Home' in reason, reason
+        robot_wait(h, 1.0)
+        after = h.feed.latest().angles
+        assert all(abs(after[j] - before[j]) < 0.02 for j in before), (before, after)
+        reason, outcome = run_bounded(h, turn)
+        assert reason is None and outcome.status == 'succeeded', reason or outcome.message
+        reason, outcome = run_bounded(h, h.goal(HOME))
+        assert reason is None and outcome.status == 'succeeded', reason or outcome.message
+        view = h.feed.latest()
+        assert clamp_state.sensed(h.server.book.for_diameter(90), view) == (clamp_state.FREE, clamp_state.FREE)

@@ -18,10 +18,16 @@ straight pipe allows, it points into an opening (a turn cancelled while
 steering in), and lowering it there pried the robot across the junction
 (twin: 57-105 N on the Bend I wheel, five times the robot's weight, after
 a Home that read as unclamped); it is left lifted and the result says so.
+Half round a corner (a turn cancelled with the front turned into the new
+pipe or the middle swung round: pabs.corner) Home is refused before
+anything moves: its unclamps open toward a straight pipe's guards, which
+a part bent round the corner cannot reach (twin: each stood 15 s against
+the junction's walls and aborted); re-sending the turn finishes it.
 """
 import collections
 
 from pirate.sequencer.guards import CLAMP_BENDS
+from pirate.sequencer.pabs import corner
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, StateMachine, Transition
 
 CHANGE_MODES = 'change control modes'
@@ -77,6 +83,19 @@ class Home(Pab):
             UNCLAMPING_REAR: lambda ctx: self._unclamp(ctx, 'rear'),
             MOVING_FRONT_DOWN: lambda ctx: ctx.prims.move_front(DOWN_ROW),
         }
+
+    def check(self, goal, view, guards):
+        """Refused half round a corner: the front turned into the new pipe, or
+        the middle swung round. Not on Bend III's earlier ``middle_round``
+        (0.85 rad): a 110 mm Clamp Sideways passes 0.95 on its way (twin)."""
+        sensed = corner.facts(guards, view)
+        stuck = {name: sensed.get(name) for name in ('front_round', 'middle_swung')}
+        if not any(stuck.values()):
+            return None
+        side = corner.side_turned(guards, view)
+        return ('Home cannot start half round a corner toward the %s (%s): its unclamps open toward a straight '
+                "pipe's guards, which a part bent round the corner cannot reach; re-send the turn toward the %s "
+                'to finish it, then Home' % (side, corner.text(view, stuck), side))
 
     def facts(self, ctx):
         angles = ctx.feed.latest().angles

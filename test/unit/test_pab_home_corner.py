@@ -1,0 +1,73 @@
+"""Home half round a corner is refused before anything moves (pabs.home, pabs.corner).
+
+The sensed states are recorded in the twin: 90 mm mitre bend LEFT, the turn
+cancelled 20, 25, 30, 35 and 40 robot s in, 2 s of safe hold
+(`python3 bench/junction_turn_resume --then home --cancel-at 20 25 30 35 40`).
+At 30 and 35 s Home's unclamps stood 15 s against the junction's walls and
+aborted; at 20, 25 and 40 s it ended with the robot loose.
+"""
+import math
+
+import pytest
+
+from pirate.state.feed import RobotView
+from pirate.sequencer.guards import GuardBook, load_files
+from pirate.sequencer.pabs import codes
+from pirate.sequencer.pabs.home import Home
+from pirate.msg import PirateGoal
+
+BOOK = GuardBook(*load_files())
+JOINTS = ('front_tilt', 'bend_i', 'bend_ii', 'rotation', 'bend_iii', 'bend_iv')
+
+#: cancel s -> (PAB state at the cancel, joint angles rad in JOINTS order, roll rad)
+RECORDED = {
+    20: ('steering the front into the new pipe', (1.17, -0.39, 0.37, 0.00, 0.41, -0.82), 3.11),
+    25: ('steering the front into the new pipe', (0.71, 0.85, 0.56, 0.00, 0.42, -0.82), 3.12),
+    30: ('clamping front at the corner', (0.16, -0.27, 1.72, 0.00, 0.41, -0.80), 3.16),
+    35: ('swinging the middle round', (0.17, -0.68, 0.64, 0.00, 1.67, -0.76), 3.12),
+    40: ('bringing the rear through', (0.17, -0.69, 0.37, 0.01, 0.50, 0.61), 3.17),
+}
+
+
+def refusal(cancel_s, mm=90, roll=None):
+    _, angles, recorded_roll = RECORDED[cancel_s]
+    view = RobotView(dict(zip(JOINTS, angles)), recorded_roll if roll is None else roll, 0.0, 0.0, 1.0, {})
+    goal = PirateGoal(name=codes.HOME, pipe_diameter=mm)
+    return Home.for_goal(goal).check(goal, view, BOOK.for_diameter(mm))
+
+
+@pytest.mark.parametrize('cancel_s', [20, 25, 40])
+def test_home_starts_where_its_unclamps_open(cancel_s):
+    assert refusal(cancel_s) is None
+
+
+@pytest.mark.parametrize('cancel_s, bend', [(30, 'Bend II 1.72 rad: the front turned into the new pipe'),
+                                            (35, 'Bend III 1.67 rad: the middle swinging round')])
+def test_home_half_round_a_corner_is_refused_with_the_way_out(cancel_s, bend):
+    reason = refusal(cancel_s)
+    assert reason is not None and 'half round a corner toward the LEFT' in reason
+    assert bend in reason
+    assert 're-send the turn toward the LEFT to finish it, then Home' in reason
+
+
+def test_the_side_named_is_the_one_the_robot_lies_on():
+    assert 'toward the RIGHT' in refusal(30, roll=0.02)
+    assert 'toward the unknown side' in refusal(30, roll=math.pi / 2)
+
+
+#: Straight-pipe clamps in the twin (90 / 110 mm, `python3 -c` probes of
+#: SimHarness): the end of a 110 mm Clamp Straight from 1.3 rad, and Bend III
+#: at the most a 110 mm Clamp Sideways LEFT from 1.5 rad passed on its way
+#: (0.95 rad, above the junction's middle_round 0.85), the rest as it ended.
+STRAIGHT_PIPE = {
+    'clamped straight 110': ((0.54, -1.48, 0.80, 0.00, 0.77, -1.56), 1.56),
+    'clamping sideways 110': ((0.54, -0.85, 0.40, 0.00, 0.95, -1.00), 3.16),
+}
+
+
+@pytest.mark.parametrize('pose', sorted(STRAIGHT_PIPE))
+def test_home_from_a_straight_pipe_is_not_a_corner(pose):
+    angles, roll = STRAIGHT_PIPE[pose]
+    view = RobotView(dict(zip(JOINTS, angles)), roll, 0.0, 0.0, 1.0, {})
+    goal = PirateGoal(name=codes.HOME, pipe_diameter=110)
+    assert Home.for_goal(goal).check(goal, view, BOOK.for_diameter(110)) is None
