@@ -30,7 +30,7 @@ Each test/rostest/panel_*.test holds one scenario as the ``~steps`` param
                                  state after it contain those texts
   other_client: {goal}           another action client sends this goal
 
-Timeouts are wall-clock seconds; the robot runs in simulated time (faster).
+Timeouts are wall-clock seconds (default EVENT_WAIT_S); the robot runs in simulated time (faster).
 Before the first step it waits for the robot state and for the manager to
 subscribe the panel topic and send its LEDs.
 """
@@ -54,6 +54,9 @@ from pirate.supervisory.goal_client import SimpleGoalClient
 
 STATUS = {'active': 1, 'preempted': 2, 'succeeded': 3, 'aborted': 4, 'rejected': 5}
 POLL_S = 0.02
+#: Wall s a step waits for its event unless it says timeout_s: a wait, not a timing
+#: figure (those are in bench/), generous for a busy CI machine.
+EVENT_WAIT_S = 30.0
 
 
 class PanelScenario(unittest.TestCase):
@@ -140,7 +143,7 @@ class PanelScenario(unittest.TestCase):
         with self.lock:
             start = self.angles[joint]
         self._until(lambda: abs(self.angles[joint] - start) >= arg['min_rad'],
-                    arg.get('timeout_s', 15), '%s to move %.2f rad' % (joint, arg['min_rad']))
+                    arg.get('timeout_s', EVENT_WAIT_S), '%s to move %.2f rad' % (joint, arg['min_rad']))
 
     def _moved(self, joints, tol_rad):
         """A callable: the joints that moved more than ``tol_rad`` (rad, with their change) since now."""
@@ -154,7 +157,7 @@ class PanelScenario(unittest.TestCase):
         self._during(lambda: not moved(), arg['for_s'], lambda: 'joints moved: %s' % moved())
 
     def step_wait_still(self, arg):
-        deadline = time.monotonic() + arg.get('timeout_s', 15)
+        deadline = time.monotonic() + arg.get('timeout_s', EVENT_WAIT_S)
         while time.monotonic() < deadline and not rospy.is_shutdown():
             moved, quiet_until = self._moved(arg['joints'], arg['tol_rad']), time.monotonic() + arg['for_s']
             while time.monotonic() < quiet_until:
@@ -164,10 +167,10 @@ class PanelScenario(unittest.TestCase):
                 time.sleep(POLL_S)
             else:
                 return
-        self.fail('the robot did not come to rest within %.1f s' % arg.get('timeout_s', 15))
+        self.fail('the robot did not come to rest within %.1f s' % arg.get('timeout_s', EVENT_WAIT_S))
 
     def step_wait_led(self, arg):
-        self._until(lambda: self.leds.get(arg['button']) == arg['lit'], arg.get('timeout_s', 10),
+        self._until(lambda: self.leds.get(arg['button']) == arg['lit'], arg.get('timeout_s', EVENT_WAIT_S),
                     'LED %d %s' % (arg['button'], 'on' if arg['lit'] else 'off'))
 
     def step_expect_led_stays(self, arg):
@@ -176,21 +179,22 @@ class PanelScenario(unittest.TestCase):
 
     def step_wait_log(self, arg):
         self._until(lambda: any(arg['contains'] in line for line in self.logs),
-                    arg.get('timeout_s', 10), 'a log containing %r' % arg['contains'])
+                    arg.get('timeout_s', EVENT_WAIT_S), 'a log containing %r' % arg['contains'])
 
     def step_wait_goal(self, arg):
         code = STATUS[arg['status']]
-        self._until(lambda: code in self.statuses, arg.get('timeout_s', 15),
+        self._until(lambda: code in self.statuses, arg.get('timeout_s', EVENT_WAIT_S),
                     lambda: 'goal status %s (seen %s)' % (arg['status'], sorted(self.statuses)))
 
     def step_wait_setpoints_zero(self, arg):
         indices = [tables.element(name).index for name in arg['elements']]
         self._until(lambda: self.setpoints is not None and all(self.setpoints[i] == 0 for i in indices),
-                    arg.get('timeout_s', 10), 'zero setpoints at %s' % arg['elements'])
+                    arg.get('timeout_s', EVENT_WAIT_S), 'zero setpoints at %s' % arg['elements'])
 
     def step_wait_operator(self, arg):
         self._until(lambda: any(arg['contains'] in line for line in self.told),
-                    arg.get('timeout_s', 10), lambda: 'the panel to say %r (said %s)' % (arg['contains'], self.told))
+                    arg.get('timeout_s', EVENT_WAIT_S),
+                    lambda: 'the panel to say %r (said %s)' % (arg['contains'], self.told))
 
     def step_wait_result(self, arg):
         index = arg['index']
