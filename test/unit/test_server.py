@@ -12,7 +12,7 @@ import pytest
 from pirate.state.feed import RobotFeed, RobotView
 from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.pabs import PABS
-from pirate.sequencer.pabs.base import Pab, PabFailed
+from pirate.sequencer.pabs.base import Ended, Pab, PabFailed
 from pirate.sequencer.primitives import MotionPrimitives
 from pirate.sequencer.pabs import codes
 from pirate.sequencer.server import ABORTED, IDLE_UNCLAMPED, PREEMPTED, SUCCEEDED, PirateServer
@@ -293,6 +293,38 @@ def test_what_a_goal_left_unfinished_goes_to_the_same_goal_only_and_once_another
     assert Leaves.handed == [HALF_DONE] * 2          # a goal that succeeded in between dropped it
     assert server.reserve(Goal(7, option=codes.RIGHT)) is None and server.run(Goal(7, option=codes.RIGHT))
     assert Leaves.handed == [HALF_DONE] * 2          # another option is another goal
+
+
+class Follows(Pab):
+    """Ends in its state 'stopped here', or succeeds; says what it was told of the goal before."""
+    name = 'Follows'
+    told = []
+
+    def follows(self, ended):
+        Follows.told.append(ended)
+
+    def run(self, ctx):
+        ctx.report('stopped here')
+        if ctx.goal.option == codes.RIGHT:
+            return 'done'
+        raise PabFailed('stopped')
+
+
+def test_each_pab_is_told_how_the_last_goal_that_ran_ended(rig, monkeypatch):
+    """Home reads it: after a turn stopped half round its corner it refuses
+    to unclamp there. A refused goal did not run, so it changes nothing."""
+    server, feed, _, _, _ = rig
+    monkeypatch.setitem(PABS, 7, ('FOLLOWS', Follows))
+    monkeypatch.setattr(Follows, 'told', [])
+    feed.push(RobotView(dict(state().angles), math.pi / 2, 321.0, 0.0, 1.0, {}))
+    assert server.reserve(Goal(7)) is None and server.run(Goal(7)).status == ABORTED
+    assert Follows.told == [None, None]                  # its check and its run
+    assert server.reserve(Goal(7, option=codes.RIGHT)) is None
+    assert Follows.told[-1] == Ended('Follows', 'stopped here', 321.0, ABORTED)
+    assert server.run(Goal(7, option=codes.RIGHT)).status == SUCCEEDED
+    assert server.reserve(Goal(3, pipe_diameter=55)) is not None        # refused: did not run
+    assert server.reserve(Goal(7)) is None
+    assert Follows.told[-1].status == SUCCEEDED
 
 
 def test_pab_codes_match_the_action_definition():

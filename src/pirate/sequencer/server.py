@@ -20,7 +20,10 @@ ActionServer. Rules:
   from a robot in a straight pipe) is handed to the same goal re-sent
   next, and dropped when any other goal runs; ``keep_unfinished`` is told
   every change (as plain data, :meth:`unfinished_data`) so a restarted
-  manager can take it back (:meth:`restore_unfinished`).
+  manager can take it back (:meth:`restore_unfinished`);
+- how the last goal that ran ended (``Pab.follows``: its PAB state and the
+  odometry then) is told to the next PAB before its check (Home refuses
+  to start in a corner a turn stopped in).
 """
 import collections
 import math
@@ -32,7 +35,7 @@ from pirate.robot import safety
 from pirate.sequencer import clamp_state, tuning
 from pirate.sequencer.guards import NoGuards
 from pirate.sequencer.pabs import PABS
-from pirate.sequencer.pabs.base import PabFailed
+from pirate.sequencer.pabs.base import Ended, PabFailed
 from pirate.sequencer.primitives import Refused
 from pirate.sequencer.trace import REACHED, Trace, guard_numbers
 
@@ -95,6 +98,7 @@ class PirateServer(object):
         self._guards = None
         self._tuning = None         # tunables waiting for the running goal to end
         self._unfinished = None     # (goal key, record) of the last goal, ended without success
+        self._ended = None          # Ended: how the last goal that ran ended, for the next PAB
         self._keep_unfinished = keep_unfinished or (lambda data: None)
         prims.notify = self._on_primitive
 
@@ -136,6 +140,7 @@ class PirateServer(object):
     def _pab_for(self, goal):
         """The PAB for ``goal``, given what the same goal's last run left unfinished."""
         pab = PABS[goal.name][1].for_goal(goal)
+        pab.follows(self._ended)
         key, record = self._unfinished or (None, None)
         if key == _goal_key(goal):
             pab.carry_on(record)
@@ -217,6 +222,7 @@ class PirateServer(object):
             if outcome.status != SUCCEEDED:
                 self.prims.safe_hold()
             record = pab.unfinished() if outcome.status != SUCCEEDED else None
+            self._ended = Ended(pab.name, self.pab_state, self._odometry_now(), outcome.status)
             self._set_unfinished((_goal_key(goal), record) if record is not None else None)
             self.trace.end(self._robot_now(), outcome.status)
             self._finish(outcome)
@@ -270,6 +276,10 @@ class PirateServer(object):
             return None
         return Progress(step.name, step.guard, view.stamp - step.start, guards.primitive_timeout,
                         guard_numbers(step.guard, view.angles))
+
+    def _odometry_now(self):
+        view = self.feed.latest()
+        return view.odometry if view is not None else math.nan
 
     def _robot_now(self):
         view = self.feed.latest()

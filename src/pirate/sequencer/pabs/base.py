@@ -17,6 +17,11 @@ Transition = collections.namedtuple('Transition', 'source target guard')
 ALWAYS = Guard('-', lambda facts: True)
 
 
+#: How the last goal that ran ended: its PAB's name, the PAB state it was in,
+#: the odometry then (mm) and its status ('succeeded', 'preempted', 'aborted').
+Ended = collections.namedtuple('Ended', 'pab state odometry_mm status')
+
+
 class PabFailed(Exception):
     """A PAB cannot go on; the message says why (goal aborted)."""
 
@@ -102,6 +107,11 @@ class Pab(object):
         """Take what the last run of this same goal left (:meth:`unfinished`),
         before :meth:`check` and :meth:`run`. Most PABs start from what the
         robot senses alone and keep nothing."""
+
+    def follows(self, ended):
+        """How the last goal that ran ended (:data:`Ended`, or None), before
+        :meth:`check` and :meth:`run`: the robot's own recent history, for a
+        PAB whose start depends on it (Home after a turn stopped in a corner)."""
 
     def unfinished(self):
         """What a run that did not succeed leaves for the same goal re-sent
