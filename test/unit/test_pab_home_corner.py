@@ -7,12 +7,14 @@ At 30 and 35 s Home's unclamps stood 15 s against the junction's walls and
 aborted; at 20, 25 and 40 s it ended with the robot loose.
 """
 import math
+import types
 
 import pytest
 
 from pirate.state.feed import RobotView
 from pirate.sequencer.guards import GuardBook, load_files
-from pirate.sequencer.pabs import codes
+from pirate.sequencer.pabs import codes, home, junction
+from pirate.sequencer.pabs.base import Ended
 from pirate.sequencer.pabs.home import Home
 from pirate.msg import PirateGoal
 
@@ -71,3 +73,56 @@ def test_home_from_a_straight_pipe_is_not_a_corner(pose):
     view = RobotView(dict(zip(JOINTS, angles)), roll, 0.0, 0.0, 1.0, {})
     goal = PirateGoal(name=codes.HOME, pipe_diameter=110)
     assert Home.for_goal(goal).check(goal, view, BOOK.for_diameter(110)) is None
+
+
+#: 110 mm mitre bend LEFT cancelled 35 robot s in, swinging the middle round
+#: (`... --mm 110 --cancel-at 35`): Bend III 1.31 rad, short of swing_rad.
+MIDDLE_SWINGING_110 = ((0.34, -0.92, 1.31, -0.03, 1.31, -1.20), 3.08)
+
+
+def swinging_110(after, odometry_mm=509.0):
+    """Home's check with the robot as MIDDLE_SWINGING_110, told ``after`` of the last goal."""
+    angles, roll = MIDDLE_SWINGING_110
+    view = RobotView(dict(zip(JOINTS, angles)), roll, odometry_mm, 0.0, 1.0, {})
+    goal = PirateGoal(name=codes.HOME, pipe_diameter=110)
+    pab = Home.for_goal(goal)
+    pab.follows(after)
+    return pab.check(goal, view, BOOK.for_diameter(110))
+
+
+def test_home_with_the_middle_swinging_is_refused_where_a_turn_stopped():
+    """Tried there, Home unclamped the front and stood against the walls with
+    the rear: neither the turn nor Home could go on from what it left."""
+    stopped = Ended('Taking Mitre bend', junction.SWINGING_MIDDLE, 509.0, 'preempted')
+    reason = swinging_110(stopped)
+    assert reason is not None and 'Bend III 1.31 rad: the middle swinging round' in reason, reason
+    assert 're-send the turn toward the LEFT' in reason
+
+
+@pytest.mark.parametrize('after, odometry_mm', [
+    (None, 509.0),                                                                   # nothing ran (a restart)
+    (Ended('Taking Mitre bend', junction.SWINGING_MIDDLE, 509.0, 'preempted'), 530.0),   # moved since
+    (Ended('Clamp Sideways', 'clamping rear', 509.0, 'preempted'), 509.0),               # not a turn
+])
+def test_bend_iii_alone_does_not_refuse_home(after, odometry_mm):
+    """Bend III at 1.31 rad without a turn stopped there: a 110 mm sideways
+    clamp passes 0.95 in a straight pipe, so Home is tried."""
+    assert swinging_110(after, odometry_mm) is None
+
+
+def test_home_tried_with_the_middle_swinging_names_the_corner_if_its_unclamp_fails():
+    """An unclamp that times out there says where the bends put the robot."""
+    angles, roll = MIDDLE_SWINGING_110
+    view = RobotView(dict(zip(JOINTS, angles)), roll, 0.0, 0.0, 1.0, {})
+    guards = BOOK.for_diameter(110)
+    ctx = types.SimpleNamespace(feed=types.SimpleNamespace(latest=lambda: view), guards=guards)
+    hint = home._corner_hint(ctx)
+    assert 'half round a corner toward the LEFT (Bend III 1.31 rad: the middle swinging round)' in hint
+    assert 're-send it toward the LEFT to finish it, then Home' in hint
+
+
+def test_no_corner_hint_in_a_straight_pipe():
+    angles, roll = STRAIGHT_PIPE['clamped straight 110']
+    view = RobotView(dict(zip(JOINTS, angles)), roll, 0.0, 0.0, 1.0, {})
+    ctx = types.SimpleNamespace(feed=types.SimpleNamespace(latest=lambda: view), guards=BOOK.for_diameter(110))
+    assert home._corner_hint(ctx) == ''

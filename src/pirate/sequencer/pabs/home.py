@@ -27,8 +27,9 @@ the junction's walls and aborted); re-sending the turn finishes it.
 import collections
 
 from pirate.sequencer.guards import CLAMP_BENDS
-from pirate.sequencer.pabs import corner
+from pirate.sequencer.pabs import corner, junction
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, StateMachine, Transition
+from pirate.state.feed import TimedOut
 
 CHANGE_MODES = 'change control modes'
 LOWERING_FRONT = 'lowering the front'
@@ -84,18 +85,39 @@ class Home(Pab):
             MOVING_FRONT_DOWN: lambda ctx: ctx.prims.move_front(DOWN_ROW),
         }
 
+    def __init__(self):
+        self.after = None            # Ended: how the last goal ended (Pab.follows)
+
+    def follows(self, ended):
+        self.after = ended
+
     def check(self, goal, view, guards):
         """Refused half round a corner: the front turned into the new pipe, or
-        the middle swung round. Not on Bend III's earlier ``middle_round``
-        (0.85 rad): a 110 mm Clamp Sideways passes 0.95 on its way (twin)."""
+        the middle swung round; or the middle swinging round (Bend III's
+        ``middle_round``) where a turn stopped in its corner and the robot
+        has not moved since. Bend III alone says nothing there: a 110 mm
+        Clamp Sideways passes 0.95 rad on its way (twin), a turn cancelled
+        while swinging stood at 1.21-1.43, where Home unclamped the front,
+        stood against the walls with the rear, and left a robot neither the
+        turn nor Home could go on from (bench/junction_turn_resume --mm 110
+        --then home --cancel-at 35)."""
         sensed = corner.facts(guards, view)
-        stuck = {name: sensed.get(name) for name in ('front_round', 'middle_swung')}
+        names = ('front_round', 'middle_swung') + (('middle_round',) if self._stopped_in_a_corner(view, guards)
+                                                   else ())
+        stuck = {name: sensed.get(name) for name in names}
         if not any(stuck.values()):
             return None
         side = corner.side_turned(guards, view)
         return ('Home cannot start half round a corner toward the %s (%s): its unclamps open toward a straight '
                 "pipe's guards, which a part bent round the corner cannot reach; re-send the turn toward the %s "
                 'to finish it, then Home' % (side, corner.text(view, stuck), side))
+
+    def _stopped_in_a_corner(self, view, guards):
+        """The last goal was a turn that ended half round its corner, and the
+        odometry has not moved since (the drive's tolerance, mm)."""
+        after = self.after
+        return (after is not None and after.state in junction.CORNER_STATES
+                and abs(view.odometry - after.odometry_mm) <= float(guards.drive['tolerance']))
 
     def facts(self, ctx):
         angles = ctx.feed.latest().angles
@@ -115,7 +137,10 @@ class Home(Pab):
         as pressing; an inner bend at torque 0 is closed again by the outer
         one (report Table 6.5's released inner bends).
         """
-        ctx.prims.unclamp(part)
+        try:
+            ctx.prims.unclamp(part)
+        except TimedOut as late:
+            raise TimedOut('%s%s' % (late, _corner_hint(ctx))) from late
         outer, inner = CLAMP_BENDS[part]
         ctx.prims.move_module(outer, 0)
         ctx.prims.hold(inner)
@@ -136,6 +161,22 @@ class Home(Pab):
                 'allows %.2f) points it into an opening, where lowering it pries the robot against the junction; '
                 '%d motion primitives' % (angles['front_tilt'], angles['bend_i'], ctx.guards.pipe_diameter,
                                           _bend_i_max(ctx), count))
+
+
+def _corner_hint(ctx):
+    """For an unclamp that did not open: where in a corner the robot senses it
+    is, if anywhere short of the rear coming round ('' otherwise). With Bend
+    III between the turn row's resume_middle_rad and swing_rad Home is only
+    refused after a turn that stopped there (:meth:`Home.check`); from a
+    manager restarted since, or the robot moved, it is tried."""
+    view = ctx.feed.latest()
+    sensed = corner.facts(ctx.guards, view)
+    sensed.pop('rear_round', None)
+    if not any(sensed.values()):
+        return ''
+    side = corner.side_turned(ctx.guards, view)
+    return ('; the bends say half round a corner toward the %s (%s): if a turn was cancelled there, re-send it '
+            'toward the %s to finish it, then Home' % (side, corner.text(view, sensed), side))
 
 
 def _bend_i_max(ctx):

@@ -114,6 +114,9 @@ STEERING_FRONT = 'steering the front into the new pipe'
 CLAMPING_AT_CORNER = 'clamping front at the corner'
 SWINGING_MIDDLE = 'swinging the middle round'
 BRINGING_REAR = 'bringing the rear through'
+#: The states of a turn half round its corner, before the rear comes round:
+#: a turn stopped in one leaves the robot where only the turn can go on.
+CORNER_STATES = (CLAMPING_AT_CORNER, SWINGING_MIDDLE)
 DRIVING_IN = 'driving into the new pipe'
 
 #: found: the junction was sensed; front / rear: the part is clamped
