@@ -126,3 +126,26 @@ def test_no_corner_hint_in_a_straight_pipe():
     view = RobotView(dict(zip(JOINTS, angles)), roll, 0.0, 0.0, 1.0, {})
     ctx = types.SimpleNamespace(feed=types.SimpleNamespace(latest=lambda: view), guards=BOOK.for_diameter(110))
     assert home._corner_hint(ctx) == ''
+
+
+#: 110 mm T-joint LEFT cancelled 35 robot s in, swinging the middle round
+#: (`... --pab T_JOINT --mm 110 --cancel-at 35`): no bend past a corner
+#: threshold (Bend I + II 1.32 < steered_sum_rad 1.6, Bend III 0.68).
+T_JOINT_SWINGING_110 = ((0.08, 0.20, 1.12, -0.03, 0.68, -1.33), 3.10, 420.0)
+
+
+@pytest.mark.parametrize('after, refused', [
+    (Ended('Taking T-joint', junction.SWINGING_MIDDLE, 420.0, 'preempted'), True),
+    (None, False),
+])
+def test_home_where_a_turn_stopped_in_its_corner_is_refused_whatever_the_bends_say(after, refused):
+    angles, roll, odometry_mm = T_JOINT_SWINGING_110
+    view = RobotView(dict(zip(JOINTS, angles)), roll, odometry_mm, 0.0, 1.0, {})
+    goal = PirateGoal(name=codes.HOME, pipe_diameter=110)
+    pab = Home.for_goal(goal)
+    pab.follows(after)
+    reason = pab.check(goal, view, BOOK.for_diameter(110))
+    assert (reason is not None) == refused, reason
+    if refused:
+        assert 'the last goal, Taking T-joint, stopped swinging the middle round here' in reason
+        assert 're-send the turn toward the LEFT to finish it, then Home' in reason

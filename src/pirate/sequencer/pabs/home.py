@@ -92,25 +92,27 @@ class Home(Pab):
         self.after = ended
 
     def check(self, goal, view, guards):
-        """Refused half round a corner: the front turned into the new pipe, or
-        the middle swung round; or the middle swinging round (Bend III's
-        ``middle_round``) where a turn stopped in its corner and the robot
-        has not moved since. Bend III alone says nothing there: a 110 mm
-        Clamp Sideways passes 0.95 rad on its way (twin), a turn cancelled
-        while swinging stood at 1.21-1.43, where Home unclamped the front,
-        stood against the walls with the rear, and left a robot neither the
-        turn nor Home could go on from (bench/junction_turn_resume --mm 110
-        --then home --cancel-at 35)."""
+        """Refused half round a corner, as the bends sense it (the front turned
+        into the new pipe, or the middle swung round) or as the last goal
+        left it (a turn that stopped in its corner, the robot not moved
+        since). The bends alone do not tell the middle swinging round: a
+        110 mm Clamp Sideways passes Bend III 0.95 rad in a straight pipe,
+        a 110 mm T-joint cancelled while swinging stood at 0.68 (twin). Tried
+        there, Home unclamped the front, stood 15 s against the walls, and
+        left a robot neither the turn nor Home could go on from
+        (bench/junction_turn_resume --then home --mm 110 [--pab T_JOINT])."""
         sensed = corner.facts(guards, view)
-        names = ('front_round', 'middle_swung') + (('middle_round',) if self._stopped_in_a_corner(view, guards)
-                                                   else ())
-        stuck = {name: sensed.get(name) for name in names}
-        if not any(stuck.values()):
+        said = corner.text(view, {name: sensed.get(name) for name in ('front_round', 'middle_swung')})
+        stopped = self._stopped_in_a_corner(view, guards)
+        if not said and not stopped:
             return None
+        if stopped:
+            said = ', '.join(filter(None, ('the last goal, %s, stopped %s here' % (self.after.pab, self.after.state),
+                                           said or corner.text(view, sensed))))
         side = corner.side_turned(guards, view)
         return ('Home cannot start half round a corner toward the %s (%s): its unclamps open toward a straight '
                 "pipe's guards, which a part bent round the corner cannot reach; re-send the turn toward the %s "
-                'to finish it, then Home' % (side, corner.text(view, stuck), side))
+                'to finish it, then Home' % (side, said, side))
 
     def _stopped_in_a_corner(self, view, guards):
         """The last goal was a turn that ended half round its corner, and the
