@@ -149,3 +149,23 @@ def test_home_where_a_turn_stopped_in_its_corner_is_refused_whatever_the_bends_s
     if refused:
         assert 'the last goal, Taking T-joint, stopped swinging the middle round here' in reason
         assert 're-send the turn toward the LEFT to finish it, then Home' in reason
+
+
+#: 90 mm mitre bend LEFT cancelled bringing the rear through, 38 and 39 robot s
+#: in (`... --cancel-at 38 39`): Home blocked at 38 s (Bend III still round),
+#: unclamped at 39 s. (angles, roll, odometry mm)
+BRINGING_REAR_90 = {38: ((0.17, -0.70, 0.39, 0.00, 1.18, 0.11), 3.15, 643.0),
+                    39: ((0.17, -0.70, 0.39, 0.00, 0.81, 0.48), 3.16, 684.0)}
+
+
+@pytest.mark.parametrize('cancel_s, refused', [(38, True), (39, False)])
+def test_home_after_a_turn_stopped_bringing_the_rear_is_refused_while_the_middle_is_round(cancel_s, refused):
+    angles, roll, odometry_mm = BRINGING_REAR_90[cancel_s]
+    view = RobotView(dict(zip(JOINTS, angles)), roll, odometry_mm, 0.0, 1.0, {})
+    goal = PirateGoal(name=codes.HOME, pipe_diameter=90)
+    pab = Home.for_goal(goal)
+    pab.follows(Ended('Taking Mitre bend', junction.BRINGING_REAR, odometry_mm, 'preempted'))
+    reason = pab.check(goal, view, BOOK.for_diameter(90))
+    assert (reason is not None) == refused, reason
+    if refused:
+        assert 'stopped bringing the rear through here, Bend III 1.18 rad: the middle swinging round' in reason

@@ -115,11 +115,15 @@ class Home(Pab):
                 'to finish it, then Home' % (side, said, side))
 
     def _stopped_in_a_corner(self, view, guards):
-        """The last goal was a turn that ended half round its corner, and the
-        odometry has not moved since (the drive's tolerance, mm)."""
+        """The last goal was a turn that ended half round its corner (in one of
+        its corner states, or bringing the rear through with the middle still
+        round: Bend III past the turn row's resume_middle_rad), and the robot
+        has not moved since (the odometry, within the drive's tolerance, mm)."""
         after = self.after
-        return (after is not None and after.state in junction.CORNER_STATES
-                and abs(view.odometry - after.odometry_mm) <= float(guards.drive['tolerance']))
+        if after is None or abs(view.odometry - after.odometry_mm) > float(guards.drive['tolerance']):
+            return False
+        return after.state in junction.CORNER_STATES or (
+            after.state == junction.BRINGING_REAR and corner.facts(guards, view).get('middle_round'))
 
     def facts(self, ctx):
         angles = ctx.feed.latest().angles
