@@ -222,7 +222,8 @@ class PirateServer(object):
             if outcome.status != SUCCEEDED:
                 self.prims.safe_hold()
             record = pab.unfinished() if outcome.status != SUCCEEDED else None
-            self._ended = Ended(pab.name, self.pab_state, self._odometry_now(), outcome.status)
+            self._ended = Ended(pab.name, self.pab_state, self._odometry_now(), outcome.status,
+                                outcome.junction_missing)
             self._set_unfinished((_goal_key(goal), record) if record is not None else None)
             self.trace.end(self._robot_now(), outcome.status)
             self._finish(outcome)

@@ -18,8 +18,9 @@ ALWAYS = Guard('-', lambda facts: True)
 
 
 #: How the last goal that ran ended: its PAB's name, the PAB state it was in,
-#: the odometry then (mm) and its status ('succeeded', 'preempted', 'aborted').
-Ended = collections.namedtuple('Ended', 'pab state odometry_mm status')
+#: the odometry then (mm), its status ('succeeded', 'preempted', 'aborted')
+#: and whether it ended for want of a junction (the result's junction_missing).
+Ended = collections.namedtuple('Ended', 'pab state odometry_mm status junction_missing', defaults=(False,))
 
 
 class PabFailed(Exception):

@@ -43,10 +43,16 @@ LOWER_ROW = 'move_front_home'
 DOWN_ROW = 'move_front_down'
 #: The row of how far Bend I may bend with the front part along a straight pipe.
 ALONG_ROW = 'home_front_down'
+#: The row of the front tilt at which a turn's steer has put the front module in the opening.
+STEERED_ROW = 'home_after_steering'
 
 #: What Home's guards look at: aligned = |rotation| within the align tolerance;
 #: lifted = front tilt above the ``above`` of the diameter's ``move_front_home`` row;
-#: along = Bend I at most the ``bend_i_max_rad`` of its ``home_front_down`` row.
+#: along = Bend I at most the ``bend_i_max_rad`` of its ``home_front_down`` row,
+#: and the last goal not a turn that stopped steering the front into an
+#: opening where the robot still is (Pab.follows: lowered after that, the
+#: front pried the Bend I wheel on the wall with 16.9 N, the robot weighing
+#: 10.5 N, with Bend I at -0.55 rad: twin, 90 mm mitre bend cancelled 19 s in).
 Facts = collections.namedtuple('Facts', 'aligned lifted along', defaults=(False, True))
 
 ALIGNED = Guard('aligned', lambda f: f.aligned)
@@ -94,8 +100,9 @@ class Home(Pab):
     def check(self, goal, view, guards):
         """Refused half round a corner, as the bends sense it (the front turned
         into the new pipe, or the middle swung round) or as the last goal
-        left it (a turn that stopped in its corner, the robot not moved
-        since). The bends alone do not tell the middle swinging round: a
+        left it (a turn that stopped in its corner, or steering with the
+        front module dropped into the opening, the robot not moved since).
+        The bends alone do not tell the middle swinging round: a
         110 mm Clamp Sideways passes Bend III 0.95 rad in a straight pipe,
         a 110 mm T-joint cancelled while swinging stood at 0.68 (twin). Tried
         there, Home unclamped the front, stood 15 s against the walls, and
@@ -103,33 +110,55 @@ class Home(Pab):
         (bench/junction_turn_resume --then home --mm 110 [--pab T_JOINT])."""
         sensed = corner.facts(guards, view)
         said = corner.text(view, {name: sensed.get(name) for name in ('front_round', 'middle_swung')})
-        stopped = self._stopped_in_a_corner(view, guards)
+        steered_in = self._steered_in(view, guards)
+        stopped = self._stopped_in_a_corner(view, guards) or steered_in
         if not said and not stopped:
             return None
         if stopped:
-            said = ', '.join(filter(None, ('the last goal, %s, stopped %s here' % (self.after.pab, self.after.state),
-                                           said or corner.text(view, sensed))))
+            said = ', '.join(filter(None, (
+                'the last goal, %s, stopped %s here' % (self.after.pab, self.after.state),
+                said or corner.text(view, sensed),
+                'front tilt %.2f rad: the front module dropped into the opening' % view.angles['front_tilt']
+                if steered_in else '')))
         side = corner.side_turned(guards, view)
         return ('Home cannot start half round a corner toward the %s (%s): its unclamps open toward a straight '
                 "pipe's guards, which a part bent round the corner cannot reach; re-send the turn toward the %s "
                 'to finish it, then Home' % (side, said, side))
+
+    def _stopped_steering(self, view, guards):
+        """The last goal was a turn that stopped steering its front into the
+        new pipe, and the robot has not moved since. Not one that ended for
+        want of a junction: it steered along a straight pipe."""
+        return (self._stopped_here(view, guards) and self.after.state == junction.STEERING_FRONT
+                and not self.after.junction_missing)
+
+    def _steered_in(self, view, guards):
+        """The last goal stopped steering, the front module dropped into the
+        opening (front tilt down to the diameter's ``entered_tilt_rad``)."""
+        return (self._stopped_steering(view, guards)
+                and view.angles['front_tilt'] <= float(guards.row(STEERED_ROW)['entered_tilt_rad']))
+
+    def _stopped_here(self, view, guards):
+        """The last goal ended where the odometry still is (within the drive's tolerance, mm)."""
+        after = self.after
+        return after is not None and abs(view.odometry - after.odometry_mm) <= float(guards.drive['tolerance'])
 
     def _stopped_in_a_corner(self, view, guards):
         """The last goal was a turn that ended half round its corner (in one of
         its corner states, or bringing the rear through with the middle still
         round: Bend III past the turn row's resume_middle_rad), and the robot
         has not moved since (the odometry, within the drive's tolerance, mm)."""
-        after = self.after
-        if after is None or abs(view.odometry - after.odometry_mm) > float(guards.drive['tolerance']):
+        if not self._stopped_here(view, guards):
             return False
-        return after.state in junction.CORNER_STATES or (
-            after.state == junction.BRINGING_REAR and corner.facts(guards, view).get('middle_round'))
+        return self.after.state in junction.CORNER_STATES or (
+            self.after.state == junction.BRINGING_REAR and corner.facts(guards, view).get('middle_round'))
 
     def facts(self, ctx):
-        angles = ctx.feed.latest().angles
+        view = ctx.feed.latest()
+        angles = view.angles
         return Facts(aligned=abs(angles['rotation']) <= ctx.guards.align_tolerance,
                      lifted=angles['front_tilt'] > float(ctx.guards.row(LOWER_ROW)['above']),
-                     along=angles['bend_i'] <= _bend_i_max(ctx))
+                     along=angles['bend_i'] <= _bend_i_max(ctx) and not self._stopped_steering(view, ctx.guards))
 
     @staticmethod
     def _unclamp(ctx, part):
@@ -163,10 +192,13 @@ class Home(Pab):
         angles = ctx.feed.latest().angles
         if angles['front_tilt'] <= ctx.guards.move(DOWN_ROW).guard:     # lowered (the ALONG path)
             return 'unclamped and lying in the pipe, %d motion primitives' % count
-        return ('unclamped, the front module left lifted at %.2f rad: Bend I at %+.2f rad (a straight %d mm pipe '
-                'allows %.2f) points it into an opening, where lowering it pries the robot against the junction; '
-                '%d motion primitives' % (angles['front_tilt'], angles['bend_i'], ctx.guards.pipe_diameter,
-                                          _bend_i_max(ctx), count))
+        if self._stopped_steering(ctx.feed.latest(), ctx.guards):
+            why = 'the last goal, %s, stopped steering it into an opening here' % self.after.pab
+        else:
+            why = 'Bend I at %+.2f rad (a straight %d mm pipe allows %.2f) points it into an opening' % (
+                angles['bend_i'], ctx.guards.pipe_diameter, _bend_i_max(ctx))
+        return ('unclamped, the front module left lifted at %.2f rad: %s, where lowering it pries the robot against '
+                'the junction; %d motion primitives' % (angles['front_tilt'], why, count))
 
 
 def _corner_hint(ctx):
