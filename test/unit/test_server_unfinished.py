@@ -1,4 +1,4 @@
-"""What a goal leaves unfinished outlives a restarted manager (issue 10).
+"""What a goal leaves unfinished, and how it ended, outlive a restarted manager (issue 10).
 
 A turn cancelled once its rear came round leaves the server a record
 (:class:`pirate.sequencer.pabs.junction.PastCorner`) that nothing sensed
@@ -8,6 +8,9 @@ until its distance bound. The server now hands every change of the record
 to ``keep_unfinished`` as plain data (the manager keeps it in its private
 parameter ``~unfinished``, which outlives the node) and takes it back with
 :meth:`PirateServer.restore_unfinished`, refusing data that is not one.
+How the last goal ended (:data:`Ended`, told to the next PAB) is kept the
+same way in ``~last_goal_ended``: before, Home from a manager restarted
+where a turn stopped half round its corner was tried and blocked there.
 """
 import collections
 import math
@@ -18,7 +21,7 @@ from pirate.robot.tables import JOINT_NAMES
 from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.pabs import PABS, codes
 from pirate.sequencer.pabs import junction as jn
-from pirate.sequencer.pabs.base import Pab, PabFailed
+from pirate.sequencer.pabs.base import Ended, Pab, PabFailed
 from pirate.sequencer.primitives import MotionPrimitives
 from pirate.sequencer.server import ABORTED, SUCCEEDED, PirateServer
 from pirate.state.feed import RobotFeed, RobotView
@@ -51,13 +54,14 @@ class LeavesARecord(Pab):
         return 'went on from %s' % (self.carried,)
 
 
-def server(keep, log=None):
-    """A server whose robot stands still, each change of its record handed to ``keep``."""
+def server(keep, log=None, keep_ended=None, view=None):
+    """A server whose robot stands still (``view``, else straight at odometry
+    1200 mm), each change of its record handed to ``keep``."""
     _, setpoint, control, limit = command_arrays()
     feed = RobotFeed(0.3, clock=lambda: 50.0)
-    feed.push(RobotView(dict.fromkeys(JOINT_NAMES, 0.0), math.pi, 1200.0, 0.0, 50.0, {}))
+    feed.push(view or RobotView(dict.fromkeys(JOINT_NAMES, 0.0), math.pi, 1200.0, 0.0, 50.0, {}))
     return PirateServer(MotionPrimitives(setpoint, control, limit, feed), feed, BOOK, lambda: None,
-                        log=log, keep_unfinished=keep)
+                        log=log, keep_unfinished=keep, keep_ended=keep_ended)
 
 
 def run(srv, goal):
@@ -194,3 +198,74 @@ def test_a_master_that_does_not_answer_costs_the_record_not_the_outcome(node, le
     assert outcome.status == ABORTED and 'cancelled past the corner' in outcome.message
     assert srv.active is None and srv.reserve(leaves) is None          # the server ended the goal
     assert any('could not keep' in line and 'connection refused' in line for line in said), said
+
+
+#: A 110 mm T-joint LEFT cancelled 35 robot s in, swinging the middle round
+#: (test_pab_home_corner.T_JOINT_SWINGING_110): no bend says "corner", only
+#: how the turn ended does.
+SWINGING = RobotView(dict(zip(('front_tilt', 'bend_i', 'bend_ii', 'rotation', 'bend_iii', 'bend_iv'),
+                              (0.08, 0.20, 1.12, -0.03, 0.68, -1.33)), rotation=0.0), 3.10, 420.0, 0.0, 50.0, {})
+TURN_ENDED = {'pab': 'Taking T-joint', 'state': jn.SWINGING_MIDDLE, 'odometry_mm': 420.0, 'status': 'preempted',
+              'junction_missing': False}
+HOME = Goal(codes.HOME, codes.NONE, 0.0, 0.0, 110)
+
+
+def test_a_restarted_server_still_refuses_home_where_the_turn_before_the_restart_stopped():
+    before_restart = server(lambda data: None, view=SWINGING)
+    assert before_restart.reserve(HOME) is None        # nothing told it how the turn ended: Home is tried
+    restarted = server(lambda data: None, view=SWINGING)
+    assert restarted.restore_ended(dict(TURN_ENDED)) is None
+    reason = restarted.reserve(HOME)
+    assert reason is not None and 'the last goal, Taking T-joint, stopped swinging the middle round here' in reason
+
+
+def test_how_each_goal_ended_is_handed_over_and_a_restarted_server_tells_the_next_pab(leaves, monkeypatch):
+    ended = []
+    first = server(lambda data: None, keep_ended=ended.append)
+    assert run(first, leaves).status == ABORTED
+    assert ended == [{'pab': 'Leaves a record', 'state': '', 'odometry_mm': 1200.0, 'status': ABORTED,
+                      'junction_missing': False}]
+    told = []
+    monkeypatch.setattr(LeavesARecord, 'follows', lambda self, after: told.append(after), raising=False)
+    second = server(lambda data: None)
+    assert second.restore_ended(ended[-1]) is None and second.ended_data() == ended[-1]
+    assert second.reserve(leaves) is None
+    assert told == [Ended('Leaves a record', '', 1200.0, ABORTED)]
+
+
+@pytest.mark.parametrize('change, why', [
+    ({'pab': None}, 'pab None is not the name of a PAB'),
+    ({'pab': ''}, "pab '' is not the name of a PAB"),
+    ({'state': 3}, 'state 3 is not a PAB state'),
+    ({'status': 'lost'}, "status 'lost' is none of succeeded, aborted, preempted"),
+    ({'odometry_mm': 'far'}, 'could not convert'),
+    ({'junction_missing': 'no'}, "junction_missing 'no' is not true or false"),
+])
+def test_data_that_is_not_how_a_goal_ended_is_refused_with_why_and_nothing_is_kept(change, why):
+    srv = server(lambda data: None)
+    assert srv.restore_ended(dict(TURN_ENDED)) is None
+    reason = srv.restore_ended(dict(TURN_ENDED, **change))
+    assert reason is not None and why in reason, reason
+    assert srv.ended_data() is None
+
+
+@pytest.mark.parametrize('data, why', [({}, "no 'pab'"), ('Taking T-joint', 'string indices'),
+                                       ({'pab': 'Taking T-joint', 'state': 'x'}, "no 'odometry_mm'")])
+def test_a_record_missing_a_field_is_refused(data, why):
+    reason = server(lambda data: None).restore_ended(data)
+    assert reason is not None and why in reason, reason
+
+
+def test_the_manager_keeps_how_the_goal_ended_and_a_new_one_refuses_home_in_the_corner(node):
+    manager_node, use = node
+    params = ParamServer({manager_node.ENDED_PARAM: dict(TURN_ENDED)})
+    use(params)
+    srv = server(lambda data: None, keep_ended=manager_node._keep_ended, view=SWINGING)
+    manager_node._restore_ended(srv)
+    assert params.said == ['kept from the last run of this node: the last goal, Taking T-joint, ended preempted '
+                           'in swinging the middle round at odometry 420 mm'] and not params.warned
+    assert 'half round a corner' in srv.reserve(HOME)
+    params.params[manager_node.ENDED_PARAM] = {'pab': 'Taking T-joint'}
+    manager_node._restore_ended(srv)
+    assert len(params.warned) == 1 and "no 'state'" in params.warned[0]
+    assert manager_node.ENDED_PARAM not in params.params and srv.reserve(HOME) is None

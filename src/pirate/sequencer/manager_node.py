@@ -44,6 +44,8 @@ from pirate.srv import ServerStatus, ServerStatusResponse
 SHUTDOWN_FLUSH_S = 0.3
 #: Where the manager keeps what the last goal left unfinished (PirateServer.unfinished_data).
 UNFINISHED_PARAM = '~unfinished'
+#: Where it keeps how the last goal that ran ended (PirateServer.ended_data).
+ENDED_PARAM = '~last_goal_ended'
 TERMINAL = (GoalStatus.SUCCEEDED, GoalStatus.ABORTED, GoalStatus.PREEMPTED, GoalStatus.RECALLED,
             GoalStatus.REJECTED)
 
@@ -113,8 +115,10 @@ class PirateManager(object):
         self.server = PirateServer(self.prims, self.feed, book, self._start_robot,
                                    feedback=self._publish_feedback, log=rospy.loginfo,
                                    pipe_diameter=int(rospy.get_param('~pipe_diameter', 90)),
-                                   authority=self._panel_refusal, keep_unfinished=_keep_unfinished)
+                                   authority=self._panel_refusal, keep_unfinished=_keep_unfinished,
+                                   keep_ended=_keep_ended)
         _restore_unfinished(self.server)
+        _restore_ended(self.server)
         self._progress_at = 0.0
         self._closing = threading.Event()
         self._current = None
@@ -310,28 +314,50 @@ class PirateManager(object):
         rospy.signal_shutdown('pirate_manager stopped: safe hold sent')
 
 
-def _keep_unfinished(data):
-    """What the last goal left unfinished, in ``~unfinished``: a parameter
-    outlives this node, so a manager started again under the same master
-    still finishes a turn (a master that does not answer: the server logs it)."""
+def _keep(param, data):
+    """``data`` in the private parameter ``param``, deleted when None: a
+    parameter outlives this node, so a manager started again under the same
+    master takes it back (a master that does not answer: the server logs it)."""
     if data is not None:
-        rospy.set_param(UNFINISHED_PARAM, data)
-    elif rospy.has_param(UNFINISHED_PARAM):
-        rospy.delete_param(UNFINISHED_PARAM)
+        rospy.set_param(param, data)
+    elif rospy.has_param(param):
+        rospy.delete_param(param)
+
+
+def _keep_unfinished(data):
+    """What the last goal left unfinished: a manager started again still finishes a turn."""
+    _keep(UNFINISHED_PARAM, data)
+
+
+def _keep_ended(data):
+    """How the last goal ended: Home from a manager started again half round a
+    corner is still refused where the turn stopped."""
+    _keep(ENDED_PARAM, data)
+
+
+def _restore(param, restore, said):
+    """Take back what the manager before this one kept in ``param`` with
+    ``restore`` (a PirateServer method); say ``said`` of it, or drop it with why."""
+    if not rospy.has_param(param):
+        return
+    data = rospy.get_param(param)
+    reason = restore(data)
+    if reason is None:
+        rospy.loginfo('kept from the last run of this node: %s', said(data))
+    else:
+        rospy.logwarn('dropped %s (%r): %s', param, data, reason)
+        rospy.delete_param(param)
 
 
 def _restore_unfinished(server):
-    """Take back what the manager before this one kept (:func:`_keep_unfinished`)."""
-    if not rospy.has_param(UNFINISHED_PARAM):
-        return
-    data = rospy.get_param(UNFINISHED_PARAM)
-    reason = server.restore_unfinished(data)
-    if reason is None:
-        rospy.loginfo('kept from the last run of this node: %s left unfinished %s; re-sent, it goes on from there',
-                      data['goal'], data['record'])
-    else:
-        rospy.logwarn('dropped %s (%r): %s', UNFINISHED_PARAM, data, reason)
-        rospy.delete_param(UNFINISHED_PARAM)
+    _restore(UNFINISHED_PARAM, server.restore_unfinished,
+             lambda data: '%s left unfinished %s; re-sent, it goes on from there' % (data['goal'], data['record']))
+
+
+def _restore_ended(server):
+    _restore(ENDED_PARAM, server.restore_ended,
+             lambda data: 'the last goal, %(pab)s, ended %(status)s in %(state)s at odometry %(odometry_mm).0f mm'
+             % data)
 
 
 def main():

@@ -23,7 +23,9 @@ ActionServer. Rules:
   manager can take it back (:meth:`restore_unfinished`);
 - how the last goal that ran ended (``Pab.follows``: its PAB state and the
   odometry then) is told to the next PAB before its check (Home refuses
-  to start in a corner a turn stopped in).
+  to start in a corner a turn stopped in); ``keep_ended`` is told it as
+  plain data (:meth:`ended_data`) so a restarted manager can take it back
+  (:meth:`restore_ended`).
 """
 import collections
 import math
@@ -76,11 +78,27 @@ def robot_clamped(view, guards):
     return clamp_state.sensed(guards, view) == (clamp_state.FULL, clamp_state.FULL)
 
 
+def _ended_from(data):
+    """The :data:`Ended` whose fields ``data`` (a dict) holds; KeyError,
+    TypeError or ValueError (naming the field) when it is not one."""
+    required = [data[field] for field in Ended._fields[:-1]]
+    ended = Ended(*required, junction_missing=data.get('junction_missing', False))
+    if not isinstance(ended.pab, str) or not ended.pab:
+        raise TypeError('pab %r is not the name of a PAB' % (ended.pab,))
+    if not isinstance(ended.state, str):
+        raise TypeError('state %r is not a PAB state' % (ended.state,))
+    if ended.status not in (SUCCEEDED, ABORTED, PREEMPTED):
+        raise ValueError('status %r is none of %s, %s, %s' % (ended.status, SUCCEEDED, ABORTED, PREEMPTED))
+    if not isinstance(ended.junction_missing, bool):
+        raise TypeError('junction_missing %r is not true or false' % (ended.junction_missing,))
+    return ended._replace(odometry_mm=float(ended.odometry_mm))
+
+
 class PirateServer(object):
     """Goal checking, PAB execution and the server state machine."""
 
     def __init__(self, prims, feed, book, start_robot, feedback=None, log=None,
-                 pipe_diameter=90, authority=None, keep_unfinished=None):
+                 pipe_diameter=90, authority=None, keep_unfinished=None, keep_ended=None):
         self.prims = prims
         self.feed = feed
         self.book = book
@@ -100,6 +118,7 @@ class PirateServer(object):
         self._unfinished = None     # (goal key, record) of the last goal, ended without success
         self._ended = None          # Ended: how the last goal that ran ended, for the next PAB
         self._keep_unfinished = keep_unfinished or (lambda data: None)
+        self._keep_ended = keep_ended or (lambda data: None)
         prims.notify = self._on_primitive
 
     # --- accepting --------------------------------------------------------
@@ -175,17 +194,45 @@ class PirateServer(object):
         return None
 
     def _set_unfinished(self, unfinished):
-        """Keep ``unfinished``; tell ``keep_unfinished`` when it changed. Called
-        after the safe hold (keeping it may wait on the ROS master); one that
-        fails costs the record kept outside, never the goal's one outcome."""
+        """Keep ``unfinished``; tell ``keep_unfinished`` when it changed."""
         changed = unfinished != self._unfinished
         self._unfinished = unfinished
         if changed:
-            data = self.unfinished_data()
-            try:
-                self._keep_unfinished(data)
-            except Exception as lost:  # pylint: disable=broad-except; the one exit path must hold
-                self._log('could not keep what the goal left unfinished (%s): %s' % (data, lost))
+            self._hand_over(self._keep_unfinished, self.unfinished_data(), 'what the goal left unfinished')
+
+    # --- how the last goal ended, across a restart -----------------------
+    def ended_data(self):
+        """How the last goal that ran ended as plain data (the fields of
+        :data:`Ended`, a ROS parameter can hold them), or None."""
+        return None if self._ended is None else dict(self._ended._asdict())
+
+    def restore_ended(self, data):
+        """Take back :meth:`ended_data` kept by a manager that restarted;
+        return why it cannot be taken (and keep nothing), or None. Home reads
+        it only while the odometry has not moved from where that goal ended,
+        so one the robot has driven away from since does nothing."""
+        try:
+            self._ended = _ended_from(data)
+        except KeyError as missing:
+            self._ended = None
+            return 'not a record of how a goal ended: no %s' % missing
+        except (TypeError, ValueError) as bad:
+            self._ended = None
+            return 'not a record of how a goal ended: %s' % bad
+        return None
+
+    def _set_ended(self, ended):
+        self._ended = ended
+        self._hand_over(self._keep_ended, self.ended_data(), 'how the goal ended')
+
+    def _hand_over(self, keep, data, what):
+        """Tell ``keep`` of ``data``. Called after the safe hold (keeping may
+        wait on the ROS master); one that fails costs the copy kept outside,
+        never the goal's one outcome."""
+        try:
+            keep(data)
+        except Exception as lost:  # pylint: disable=broad-except; the one exit path must hold
+            self._log('could not keep %s (%s): %s' % (what, data, lost))
 
     def cancel(self):
         """Cancel the running goal; the PAB stops at its next wake-up."""
@@ -222,8 +269,8 @@ class PirateServer(object):
             if outcome.status != SUCCEEDED:
                 self.prims.safe_hold()
             record = pab.unfinished() if outcome.status != SUCCEEDED else None
-            self._ended = Ended(pab.name, self.pab_state, self._odometry_now(), outcome.status,
-                                outcome.junction_missing)
+            self._set_ended(Ended(pab.name, self.pab_state, self._odometry_now(), outcome.status,
+                                  outcome.junction_missing))
             self._set_unfinished((_goal_key(goal), record) if record is not None else None)
             self.trace.end(self._robot_now(), outcome.status)
             self._finish(outcome)
