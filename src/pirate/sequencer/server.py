@@ -78,6 +78,25 @@ def robot_clamped(view, guards):
     return clamp_state.sensed(guards, view) == (clamp_state.FULL, clamp_state.FULL)
 
 
+def _read_back(parse, data, what):
+    """(``parse(data)``, None), or (None, why ``data`` is not ``what``): data
+    a restarted manager kept, refused whole when it is not what it says."""
+    try:
+        return parse(data), None
+    except KeyError as missing:
+        return None, 'not %s: no %s' % (what, missing)
+    except (TypeError, ValueError) as bad:
+        return None, 'not %s: %s' % (what, bad)
+
+
+def _unfinished_from(data):
+    """(goal key, record) from :meth:`PirateServer.unfinished_data`."""
+    name, option, diameter = (int(value) for value in data['goal'])
+    if PABS.get(name, (None, None))[1] is None:
+        raise ValueError('no PAB with code %d' % name)
+    return (name, option, diameter), PABS[name][1].record_from(dict(data['record']))
+
+
 def _ended_from(data):
     """The :data:`Ended` whose fields ``data`` (a dict) holds; KeyError,
     TypeError or ValueError (naming the field) when it is not one."""
@@ -179,19 +198,8 @@ class PirateServer(object):
         return why it cannot be taken (and keep nothing), or None. The record
         only applies while the odometry lies in its span (the PAB checks), so
         one the robot has moved away from since does nothing."""
-        try:
-            name, option, diameter = (int(value) for value in data['goal'])
-            if PABS.get(name, (None, None))[1] is None:
-                raise ValueError('no PAB with code %d' % name)
-            record = PABS[name][1].record_from(dict(data['record']))
-        except KeyError as missing:
-            self._unfinished = None
-            return 'not a record of an unfinished goal: no %s' % missing
-        except (TypeError, ValueError) as bad:
-            self._unfinished = None
-            return 'not a record of an unfinished goal: %s' % bad
-        self._unfinished = ((name, option, diameter), record)
-        return None
+        self._unfinished, reason = _read_back(_unfinished_from, data, 'a record of an unfinished goal')
+        return reason
 
     def _set_unfinished(self, unfinished):
         """Keep ``unfinished``; tell ``keep_unfinished`` when it changed."""
@@ -211,15 +219,8 @@ class PirateServer(object):
         return why it cannot be taken (and keep nothing), or None. Home reads
         it only while the odometry has not moved from where that goal ended,
         so one the robot has driven away from since does nothing."""
-        try:
-            self._ended = _ended_from(data)
-        except KeyError as missing:
-            self._ended = None
-            return 'not a record of how a goal ended: no %s' % missing
-        except (TypeError, ValueError) as bad:
-            self._ended = None
-            return 'not a record of how a goal ended: %s' % bad
-        return None
+        self._ended, reason = _read_back(_ended_from, data, 'a record of how a goal ended')
+        return reason
 
     def _set_ended(self, ended):
         self._ended = ended
