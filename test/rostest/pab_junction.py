@@ -41,6 +41,8 @@ MITRE_BEND_DOWN = {'name': PirateGoal.MITRE_BEND, 'option': PirateGoal.DOWN}
 RESEND_TURN = 're-send the turn toward the'
 #: The last steps of a turn (pirate.sequencer.pabs.junction): re-sent, it says it resumed the drive in.
 PAST_THE_CORNER = ('driving into the new pipe', 'straightening')
+#: Where pirate_manager keeps how the last goal ended (manager_node.ENDED_PARAM).
+LAST_GOAL_ENDED = '/pirate_manager/last_goal_ended'
 
 
 class PabJunctionTest(SequencerTest):
@@ -78,6 +80,7 @@ class PabJunctionTest(SequencerTest):
         """Home from wherever the cancel left the robot: Idle Unclamped. Half
         round a corner Home is refused saying to re-send the turn first; then
         the turn re-sent finishes, and Home after it."""
+        self._assert_kept_how_the_turn_ended(seed)
         self._send(HOME)
         state, result, why = self._finish()
         if state == GoalStatus.REJECTED and RESEND_TURN in why:
@@ -87,6 +90,17 @@ class PabJunctionTest(SequencerTest):
         else:
             self.assertEqual(state, GoalStatus.SUCCEEDED, 'seed %d: %s; Home: %s' % (seed, self.cancelled_text, why))
         self.assertEqual(result.server_state, 'Idle Unclamped', 'seed %d: %s' % (seed, self.cancelled_text))
+
+    def _assert_kept_how_the_turn_ended(self, seed):
+        """The manager keeps how the cancelled turn ended in a parameter a
+        manager started again takes back (Home there still refused)."""
+        kept = rospy.get_param(LAST_GOAL_ENDED)
+        said = 'seed %d: %s; kept %s' % (seed, self.cancelled_text, kept)
+        self.assertEqual(kept['pab'], rospy.get_param('~server_state', 'Taking T-joint'), said)
+        if 'cancelled during' in self.cancelled_text:
+            self.assertEqual(kept['status'], 'preempted', said)
+            self.assertTrue(self.cancelled_text.endswith('cancelled during %s' % kept['state']), said)
+        self.assertLessEqual(abs(kept['odometry_mm'] - self.state.odometry), 20.0, said)
 
     def _resend(self, junction, clamp, target, seed):
         """The cancelled turn re-sent finishes it (or the clamp it asks for first does)."""
