@@ -87,6 +87,8 @@ class Pab(object):
     machine = None
     #: True when the PAB needs the robot clamped to start (Fig 4.2: Drive).
     requires_clamped = False
+    #: How the last goal that ran ended (:meth:`follows`).
+    after = None
 
     @classmethod
     def for_goal(cls, goal):
@@ -113,6 +115,7 @@ class Pab(object):
         """How the last goal that ran ended (:data:`Ended`, or None), before
         :meth:`check` and :meth:`run`: the robot's own recent history, for a
         PAB whose start depends on it (Home after a turn stopped in a corner)."""
+        self.after = ended
 
     def unfinished(self):
         """What a run that did not succeed leaves for the same goal re-sent

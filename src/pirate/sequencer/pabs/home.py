@@ -19,7 +19,7 @@ steering in), and lowering it there pried the robot across the junction
 (twin: 57-105 N on the Bend I wheel, five times the robot's weight, after
 a Home that read as unclamped); it is left lifted and the result says so.
 Half round a corner (a turn cancelled with the front turned into the new
-pipe or the middle swung round: pabs.corner) Home is refused before
+pipe or the middle swung round, or stopped there: pabs.half_round) Home is refused before
 anything moves: its unclamps open toward a straight pipe's guards, which
 a part bent round the corner cannot reach (twin: each stood 15 s against
 the junction's walls and aborted); re-sending the turn finishes it.
@@ -27,7 +27,7 @@ the junction's walls and aborted); re-sending the turn finishes it.
 import collections
 
 from pirate.sequencer.guards import CLAMP_BENDS
-from pirate.sequencer.pabs import corner, junction
+from pirate.sequencer.pabs import corner, half_round
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, StateMachine, Transition
 from pirate.state.feed import TimedOut
 
@@ -43,8 +43,6 @@ LOWER_ROW = 'move_front_home'
 DOWN_ROW = 'move_front_down'
 #: The row of how far Bend I may bend with the front part along a straight pipe.
 ALONG_ROW = 'home_front_down'
-#: The row of the front tilt at which a turn's steer has put the front module in the opening.
-STEERED_ROW = 'home_after_steering'
 
 #: What Home's guards look at: aligned = |rotation| within the align tolerance;
 #: lifted = front tilt above the ``above`` of the diameter's ``move_front_home`` row;
@@ -91,74 +89,25 @@ class Home(Pab):
             MOVING_FRONT_DOWN: lambda ctx: ctx.prims.move_front(DOWN_ROW),
         }
 
-    def __init__(self):
-        self.after = None            # Ended: how the last goal ended (Pab.follows)
-
-    def follows(self, ended):
-        self.after = ended
-
     def check(self, goal, view, guards):
-        """Refused half round a corner, as the bends sense it (the front turned
-        into the new pipe, or the middle swung round) or as the last goal
-        left it (a turn that stopped in its corner, or steering with the
-        front module dropped into the opening, the robot not moved since).
-        The bends alone do not tell the middle swinging round: a
-        110 mm Clamp Sideways passes Bend III 0.95 rad in a straight pipe,
-        a 110 mm T-joint cancelled while swinging stood at 0.68 (twin). Tried
-        there, Home unclamped the front, stood 15 s against the walls, and
-        left a robot neither the turn nor Home could go on from
+        """Refused half round a corner (:func:`pirate.sequencer.pabs.half_round.said`):
+        tried there, Home unclamped the front, stood 15 s against the walls,
+        and left a robot neither the turn nor Home could go on from
         (bench/junction_turn_resume --then home --mm 110 [--pab T_JOINT])."""
-        sensed = corner.facts(guards, view)
-        said = corner.text(view, {name: sensed.get(name) for name in ('front_round', 'middle_swung')})
-        steered_in = self._steered_in(view, guards)
-        stopped = self._stopped_in_a_corner(view, guards) or steered_in
-        if not said and not stopped:
+        said = half_round.said(guards, view, self.after)
+        if not said:
             return None
-        if stopped:
-            said = ', '.join(filter(None, (
-                'the last goal, %s, stopped %s here' % (self.after.pab, self.after.state),
-                said or corner.text(view, sensed),
-                'front tilt %.2f rad: the front module dropped into the opening' % view.angles['front_tilt']
-                if steered_in else '')))
         side = corner.side_turned(guards, view)
         return ('Home cannot start half round a corner toward the %s (%s): its unclamps open toward a straight '
                 "pipe's guards, which a part bent round the corner cannot reach; re-send the turn toward the %s "
                 'to finish it, then Home' % (side, said, side))
 
-    def _stopped_steering(self, view, guards):
-        """The last goal was a turn that stopped steering its front into the
-        new pipe, and the robot has not moved since. Not one that ended for
-        want of a junction: it steered along a straight pipe."""
-        return (self._stopped_here(view, guards) and self.after.state == junction.STEERING_FRONT
-                and not self.after.junction_missing)
-
-    def _steered_in(self, view, guards):
-        """The last goal stopped steering, the front module dropped into the
-        opening (front tilt down to the diameter's ``entered_tilt_rad``)."""
-        return (self._stopped_steering(view, guards)
-                and view.angles['front_tilt'] <= float(guards.row(STEERED_ROW)['entered_tilt_rad']))
-
-    def _stopped_here(self, view, guards):
-        """The last goal ended where the odometry still is (within the drive's tolerance, mm)."""
-        after = self.after
-        return after is not None and abs(view.odometry - after.odometry_mm) <= float(guards.drive['tolerance'])
-
-    def _stopped_in_a_corner(self, view, guards):
-        """The last goal was a turn that ended half round its corner (in one of
-        its corner states, or bringing the rear through with the middle still
-        round: Bend III past the turn row's resume_middle_rad), and the robot
-        has not moved since (the odometry, within the drive's tolerance, mm)."""
-        if not self._stopped_here(view, guards):
-            return False
-        return self.after.state in junction.CORNER_STATES or (
-            self.after.state == junction.BRINGING_REAR and corner.facts(guards, view).get('middle_round'))
-
     def facts(self, ctx):
         view = ctx.feed.latest()
-        angles = view.angles
+        angles, steered = view.angles, half_round.stopped_steering(view, ctx.guards, self.after)
         return Facts(aligned=abs(angles['rotation']) <= ctx.guards.align_tolerance,
                      lifted=angles['front_tilt'] > float(ctx.guards.row(LOWER_ROW)['above']),
-                     along=angles['bend_i'] <= _bend_i_max(ctx) and not self._stopped_steering(view, ctx.guards))
+                     along=angles['bend_i'] <= _bend_i_max(ctx) and not steered)
 
     @staticmethod
     def _unclamp(ctx, part):
@@ -192,7 +141,7 @@ class Home(Pab):
         angles = ctx.feed.latest().angles
         if angles['front_tilt'] <= ctx.guards.move(DOWN_ROW).guard:     # lowered (the ALONG path)
             return 'unclamped and lying in the pipe, %d motion primitives' % count
-        if self._stopped_steering(ctx.feed.latest(), ctx.guards):
+        if half_round.stopped_steering(ctx.feed.latest(), ctx.guards, self.after):
             why = 'the last goal, %s, stopped steering it into an opening here' % self.after.pab
         else:
             why = 'Bend I at %+.2f rad (a straight %d mm pipe allows %.2f) points it into an opening' % (
