@@ -96,7 +96,7 @@ from pirate.sequencer.pabs import corner as corner_sensing
 from pirate.sequencer.pabs import turn_motions as motions
 from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, PabFailed, StateMachine, Transition
 from pirate.sequencer.pabs.clamp import Clamp, in_region, region_around
-from pirate.sequencer.pabs.drive import Progress, speed_problem, stop_wheels
+from pirate.sequencer.pabs.wheels import Progress, speed_problem, stop_wheels
 from pirate.state.feed import TimedOut
 
 CHANGE_MODES = 'change control modes'

@@ -11,7 +11,7 @@ import math
 
 from pirate.robot import units
 from pirate.sequencer import clamp_state
-from pirate.sequencer.pabs.drive import STANDSTILL_MM_S, Progress, stop_wheels
+from pirate.sequencer.pabs.wheels import STANDSTILL_MM_S, Progress, stop_wheels
 from pirate.state.feed import TimedOut
 
 
