@@ -268,14 +268,17 @@ def test_a_wait_ends_on_the_wall_clock_when_robot_time_stops():
 
 # --- 14.8 the smaller points ------------------------------------------------------------------
 
+#: What a Drive's check reads of the robot: lying straight in the pipe (no corner).
+CLAMPED = RobotView(dict.fromkeys(tables.JOINT_NAMES, 0.0), math.pi / 2, 0.0, 0.0, 1.0, {})
+
 @pytest.mark.parametrize('speed', [0.5, 1.0])
 def test_a_drive_the_wheels_cannot_do_is_refused(speed):
     """14.8: a Drive at <= 1 mm/s was accepted and hung (the wheel setpoint rounds to 0)."""
     guards = GuardBook(*load_files()).for_diameter(90)
     goal = type('Goal', (), dict(name=DRIVE, pipe_diameter=90, distance=50.0, speed=speed, option=0))
-    reason = Drive().check(goal, None, guards)
+    reason = Drive().check(goal, CLAMPED, guards)
     assert reason and 'would not turn' in reason
-    assert Drive().check(type('Goal', (), dict(goal.__dict__, speed=20.0)), None, guards) is None
+    assert Drive().check(type('Goal', (), dict(goal.__dict__, speed=20.0)), CLAMPED, guards) is None
 
 
 @pytest.mark.parametrize('speed', [4.0, 5.0, 6.0])
@@ -285,9 +288,9 @@ def test_a_drive_slower_than_the_progress_watchdog_needs_is_refused(speed):
     with "no odometry progress" while doing what it was asked (twin, turnspeed)."""
     guards = GuardBook(*load_files()).for_diameter(90)
     goal = type('Goal', (), dict(name=DRIVE, pipe_diameter=90, distance=50.0, speed=speed, option=0))
-    reason = Drive().check(goal, None, guards)
+    reason = Drive().check(goal, CLAMPED, guards)
     assert reason and 'progress watchdog' in reason and 'no_progress_mm' in reason, reason
-    assert Drive().check(type('Goal', (), dict(goal.__dict__, speed=10.0)), None, guards) is None
+    assert Drive().check(type('Goal', (), dict(goal.__dict__, speed=10.0)), CLAMPED, guards) is None
 
 
 def test_a_slow_drive_is_bounded_by_the_speed_its_wheels_turn_at():
