@@ -25,7 +25,7 @@ anything moves: the two parts lie in different pipes.
 import math
 
 from pirate.robot import units
-from pirate.sequencer.pabs import corner, half_round
+from pirate.sequencer.pabs import half_round
 from pirate.sequencer.pabs.base import ALWAYS, END, Pab, PabFailed, StateMachine, Transition
 from pirate.sequencer.pabs.wheels import Progress, speed_problem, stop_wheels
 
@@ -68,13 +68,8 @@ class Drive(Pab):
         Clamped there, both parts pressing their walls), the front part's
         wheels drive along the new pipe and the rear's along the old one:
         in the twin the Drive stalled in 0.4 s and aborted naming an end cap."""
-        said = half_round.said(guards, view, self.after)
-        if not said:
-            return None
-        side = corner.side_turned(guards, view)
-        return ('Drive cannot start half round a corner toward the %s (%s): the front part would drive along the '
-                'new pipe and the rear along the old one, against the corner; re-send the turn toward the %s to '
-                'finish it' % (side, said, side))
+        return half_round.refusal(guards, view, self.after, 'Drive', 'the front part would drive along the new '
+                                  'pipe and the rear along the old one, against the corner')
 
     def actions(self):
         return {DRIVING: self._drive, STOPPING: self._stop}

@@ -36,6 +36,18 @@ def said(guards, view, after):
         if steered_in else '')))
 
 
+def refusal(guards, view, after, pab, why, then=''):
+    """Why ``pab`` cannot start half round a corner (``why``: what it would do
+    there), naming what says so and the way out, the turn re-sent
+    (``then``: what to send after it); None when nothing says so."""
+    text = said(guards, view, after)
+    if not text:
+        return None
+    side = corner.side_turned(guards, view)
+    return ('%s cannot start half round a corner toward the %s (%s): %s; re-send the turn toward the %s to '
+            'finish it%s' % (pab, side, text, why, side, then))
+
+
 def stopped_steering(view, guards, after):
     """The last goal was a turn that stopped steering its front into the
     new pipe, and the robot has not moved since. Not one that ended for

@@ -94,13 +94,8 @@ class Home(Pab):
         tried there, Home unclamped the front, stood 15 s against the walls,
         and left a robot neither the turn nor Home could go on from
         (bench/junction_turn_resume --then home --mm 110 [--pab T_JOINT])."""
-        said = half_round.said(guards, view, self.after)
-        if not said:
-            return None
-        side = corner.side_turned(guards, view)
-        return ('Home cannot start half round a corner toward the %s (%s): its unclamps open toward a straight '
-                "pipe's guards, which a part bent round the corner cannot reach; re-send the turn toward the %s "
-                'to finish it, then Home' % (side, said, side))
+        return half_round.refusal(guards, view, self.after, 'Home', "its unclamps open toward a straight pipe's "
+                                  'guards, which a part bent round the corner cannot reach', then=', then Home')
 
     def facts(self, ctx):
         view = ctx.feed.latest()
