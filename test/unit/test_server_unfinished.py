@@ -265,6 +265,9 @@ def test_the_manager_keeps_how_the_goal_ended_and_a_new_one_refuses_home_in_the_
     assert params.said == ['kept from the last run of this node: the last goal, Taking T-joint, ended preempted '
                            'in swinging the middle round at odometry 420 mm'] and not params.warned
     assert 'half round a corner' in srv.reserve(HOME)
+    params.params[manager_node.ENDED_PARAM] = dict(TURN_ENDED, odometry_mm='420')      # set by hand, a string
+    manager_node._restore_ended(srv)
+    assert params.said[-1].endswith('at odometry 420 mm') and srv.ended_data()['odometry_mm'] == 420.0
     params.params[manager_node.ENDED_PARAM] = {'pab': 'Taking T-joint'}
     manager_node._restore_ended(srv)
     assert len(params.warned) == 1 and "no 'state'" in params.warned[0]

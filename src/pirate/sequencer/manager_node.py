@@ -337,27 +337,27 @@ def _keep_ended(data):
 
 def _restore(param, restore, said):
     """Take back what the manager before this one kept in ``param`` with
-    ``restore`` (a PirateServer method); say ``said`` of it, or drop it with why."""
+    ``restore`` (a PirateServer method), then log ``said()``: what was taken,
+    as the server now holds it; or drop it with why."""
     if not rospy.has_param(param):
         return
     data = rospy.get_param(param)
     reason = restore(data)
     if reason is None:
-        rospy.loginfo('kept from the last run of this node: %s', said(data))
+        rospy.loginfo('kept from the last run of this node: %s', said())
     else:
         rospy.logwarn('dropped %s (%r): %s', param, data, reason)
         rospy.delete_param(param)
 
 
 def _restore_unfinished(server):
-    _restore(UNFINISHED_PARAM, server.restore_unfinished,
-             lambda data: '%s left unfinished %s; re-sent, it goes on from there' % (data['goal'], data['record']))
+    _restore(UNFINISHED_PARAM, server.restore_unfinished, lambda: '%(goal)s left unfinished %(record)s; re-sent, '
+             'it goes on from there' % server.unfinished_data())
 
 
 def _restore_ended(server):
-    _restore(ENDED_PARAM, server.restore_ended,
-             lambda data: 'the last goal, %(pab)s, ended %(status)s in %(state)s at odometry %(odometry_mm).0f mm'
-             % data)
+    _restore(ENDED_PARAM, server.restore_ended, lambda: 'the last goal, %(pab)s, ended %(status)s in %(state)s at '
+             'odometry %(odometry_mm).0f mm' % server.ended_data())
 
 
 def main():
