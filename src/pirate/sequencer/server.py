@@ -22,8 +22,8 @@ ActionServer. Rules:
   every change (as plain data, :meth:`unfinished_data`) so a restarted
   manager can take it back (:meth:`restore_unfinished`);
 - how the last goal that ran ended (``Pab.follows``: its PAB state and the
-  odometry then) is told to the next PAB before its check (Home refuses
-  to start in a corner a turn stopped in); ``keep_ended`` is told it as
+  odometry then) is told to the next PAB before its check (Home and Drive
+  refuse to start in a corner a turn stopped in); ``keep_ended`` is told it as
   plain data (:meth:`ended_data`) so a restarted manager can take it back
   (:meth:`restore_ended`).
 """
@@ -216,8 +216,8 @@ class PirateServer(object):
 
     def restore_ended(self, data):
         """Take back :meth:`ended_data` kept by a manager that restarted;
-        return why it cannot be taken (and keep nothing), or None. Home reads
-        it only while the odometry has not moved from where that goal ended,
+        return why it cannot be taken (and keep nothing), or None. Home and
+        Drive read it only while the odometry has not moved from where that goal ended,
         so one the robot has driven away from since does nothing."""
         self._ended, reason = _read_back(_ended_from, data, 'a record of how a goal ended')
         return reason
