@@ -330,8 +330,8 @@ def _keep_unfinished(data):
 
 
 def _keep_ended(data):
-    """How the last goal ended: Home from a manager started again half round a
-    corner is still refused where the turn stopped."""
+    """How the last goal ended: Home and Drive from a manager started again
+    half round a corner are still refused where the turn stopped."""
     _keep(ENDED_PARAM, data)
 
 
