@@ -27,7 +27,7 @@ def said(guards, view, after):
     sensed = corner.facts(guards, view)
     text = corner.text(view, {name: sensed.get(name) for name in ('front_round', 'middle_swung')})
     steered_in = _steered_in(view, guards, after)
-    if not (_stopped_in_a_corner(view, guards, after) or steered_in):
+    if not (_stopped_in_a_corner(view, guards, after, sensed) or steered_in):
         return text
     return ', '.join(filter(None, (
         'the last goal, %s, stopped %s here' % (after.pab, after.state),
@@ -68,12 +68,12 @@ def _stopped_here(view, guards, after):
     return after is not None and abs(view.odometry - after.odometry_mm) <= float(guards.drive['tolerance'])
 
 
-def _stopped_in_a_corner(view, guards, after):
+def _stopped_in_a_corner(view, guards, after, sensed):
     """The last goal was a turn that ended half round its corner (in one of
     its corner states, or bringing the rear through with the middle still
-    round: Bend III past the turn row's resume_middle_rad), and the robot
-    has not moved since."""
+    round: ``sensed``, the corner facts, say Bend III is past the turn row's
+    resume_middle_rad), and the robot has not moved since."""
     if not _stopped_here(view, guards, after):
         return False
     return after.state in junction.CORNER_STATES or (
-        after.state == junction.BRINGING_REAR and corner.facts(guards, view).get('middle_round'))
+        after.state == junction.BRINGING_REAR and sensed.get('middle_round'))

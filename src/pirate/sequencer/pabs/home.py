@@ -132,11 +132,11 @@ class Home(Pab):
         ctx.prims.change_control_mode('front_tilt', 'pwm')
 
     def summary(self, ctx):
-        count = len(ctx.prims.executed)
-        angles = ctx.feed.latest().angles
+        count, view = len(ctx.prims.executed), ctx.feed.latest()
+        angles = view.angles
         if angles['front_tilt'] <= ctx.guards.move(DOWN_ROW).guard:     # lowered (the ALONG path)
             return 'unclamped and lying in the pipe, %d motion primitives' % count
-        if half_round.stopped_steering(ctx.feed.latest(), ctx.guards, self.after):
+        if half_round.stopped_steering(view, ctx.guards, self.after):
             why = 'the last goal, %s, stopped steering it into an opening here' % self.after.pab
         else:
             why = 'Bend I at %+.2f rad (a straight %d mm pipe allows %.2f) points it into an opening' % (
