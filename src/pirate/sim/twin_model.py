@@ -82,8 +82,10 @@ def model_xml(world, config, roll):
     ET.SubElement(root, 'compiler', angle='radian')
     option = ET.SubElement(root, 'option', timestep='%g' % config['physics']['timestep_s'], gravity='0 0 -9.81',
                            integrator='implicitfast', cone='elliptic',
-                           impratio='%g' % config['physics']['friction_impratio'])
-    ET.SubElement(option, 'flag', sleep='enable')       # debris at rest sleeps (twin_pipes); the robot never
+                           impratio='%g' % config['physics']['friction_impratio'],
+                           jacobian=config['physics']['jacobian'])
+    ET.SubElement(option, 'flag', sleep='enable',       # debris at rest sleeps (twin_pipes); the robot never
+                  multiccd='enable' if config['physics']['multiccd'] else 'disable')
     ET.SubElement(root, 'visual').append(ET.Element('global', offwidth='640', offheight='480'))
     _defaults(root, config)
     body = ET.SubElement(root, 'worldbody')
