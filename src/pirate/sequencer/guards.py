@@ -127,6 +127,8 @@ RANGES = {
     ('feedback_timeout',): (0.05, 2.0),
     ('wall_timeout_factor',): (1.0, 10.0),
     ('max_primitives',): (1, 200),
+    ('re_adjust', 'same_roll_passes'): (2, 20),
+    ('re_adjust', 'same_roll_rad'): (0.001, 0.2),
     ('align_tolerance',): (0.001, 0.2),
     ('rotate_tolerance',): (0.001, 0.2),
     ('drive', 'default_speed'): (1.0, 170.0),

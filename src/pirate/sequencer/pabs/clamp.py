@@ -48,7 +48,7 @@ from pirate.robot import safety
 from pirate.sequencer import clamp_state
 from pirate.sequencer.guards import CLAMP_BENDS
 from pirate.sequencer.pabs import codes
-from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, StateMachine, Transition
+from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, PabFailed, StateMachine, Transition
 
 CHANGE_MODES = 'change control modes'
 MOVING_FRONT = 'moving front'
@@ -176,6 +176,7 @@ class Clamp(Pab):
         self.lift = 0
         self.front_custom_done = False
         self.limited = False
+        self.off_band_rolls = []     # rad, where each full front clamp in a row left the robot off its band
 
     def check(self, goal, view, guards):
         if self.target is None:
@@ -188,7 +189,7 @@ class Clamp(Pab):
             CHANGE_MODES: self._change_modes,
             MOVING_FRONT: self._move_front,
             CLAMPING_REAR: lambda ctx: self._clamp(ctx, 'rear', self._full_row(ctx), FULL),
-            CLAMPING_FRONT: lambda ctx: self._clamp(ctx, 'front', self._full_row(ctx), FULL),
+            CLAMPING_FRONT: self._clamp_front_full,
             CLAMPING_REAR_CUSTOM: lambda ctx: self._clamp_custom(ctx, 'rear', 'clamp_rear_custom'),
             CLAMPING_FRONT_CUSTOM: self._clamp_front_custom,
             UNCLAMPING_REAR: lambda ctx: self._unclamp(ctx, 'rear'),
@@ -270,6 +271,35 @@ class Clamp(Pab):
     def _clamp(self, ctx, part, kind, result):
         ctx.prims.clamp(part, kind)
         self.clamp[part] = result
+
+    def _clamp_front_full(self, ctx):
+        self._clamp(ctx, 'front', self._full_row(ctx), FULL)
+        self._watch_re_adjust(ctx)
+
+    def _watch_re_adjust(self, ctx):
+        """Abort a re-adjust that repeats itself instead of converging.
+
+        Each full front clamp that leaves the robot off the straight band
+        starts another pass; when ``re_adjust: same_roll_passes`` of them in
+        a row leave it at the same roll (within ``same_roll_rad``,
+        config/sequencer.yaml), the next pass will too. In the twin a robot
+        twisted when the rotation encoder was zeroed did that until the
+        60-state cap (100 s): the front never lies where the encoder says,
+        so its clamp pulls the rear off the band every time.
+        """
+        view = ctx.feed.latest()
+        if in_region(view.orientation, region_around(ctx.guards, 'straight', self.target)):
+            self.off_band_rolls = []
+            return
+        self.off_band_rolls.append(view.orientation)
+        settings = ctx.guards.re_adjust
+        last = self.off_band_rolls[-int(settings['same_roll_passes']):]
+        if len(last) == int(settings['same_roll_passes']) and max(last) - min(last) <= settings['same_roll_rad']:
+            low, high = region_around(ctx.guards, 'straight', self.target)
+            raise PabFailed('%s does not converge: %d full front clamps in a row left the robot at %.3f to %.3f '
+                            'rad, outside the straight band %.3f to %.3f rad; the front part does not lie where the '
+                            'rotation encoder says (was the robot twisted when it was switched on? the encoder '
+                            'is zeroed at start-up)' % (self.name, len(last), min(last), max(last), low, high))
 
     def _clamp_front_custom(self, ctx):
         kind = 'clamp_front_custom' if self.front_custom_done else 'clamp_front_custom_first'
