@@ -293,8 +293,9 @@ class Clamp(Pab):
             return
         self.off_band_rolls.append(view.orientation)
         settings = ctx.guards.re_adjust
-        last = self.off_band_rolls[-int(settings['same_roll_passes']):]
-        if len(last) == int(settings['same_roll_passes']) and max(last) - min(last) <= settings['same_roll_rad']:
+        passes = int(settings['same_roll_passes'])
+        last = self.off_band_rolls[-passes:]
+        if len(last) == passes and max(last) - min(last) <= settings['same_roll_rad']:
             low, high = region_around(ctx.guards, 'straight', self.target)
             raise PabFailed('%s does not converge: %d full front clamps in a row left the robot at %.3f to %.3f '
                             'rad, outside the straight band %.3f to %.3f rad; the front part does not lie where the '
