@@ -42,6 +42,11 @@ from pirate.sequencer.server import ABORTED, PREEMPTED, SUCCEEDED, Feedback, Pir
 from pirate.srv import ServerStatus, ServerStatusResponse
 
 SHUTDOWN_FLUSH_S = 0.3
+#: s (ROS time) the panel's client waits for its goal topics to reach the
+#: Pirate Server before it says the goal cannot be sent: a goal published
+#: before they connect is dropped by actionlib without a word (CI: a panel
+#: press 30 ms after the manager started was "sent" and never ran).
+SERVER_CONNECT_S = 2.0
 #: Where the manager keeps what the last goal left unfinished (PirateServer.unfinished_data).
 UNFINISHED_PARAM = '~unfinished'
 #: Where it keeps how the last goal that ran ended (PirateServer.ended_data).
@@ -70,6 +75,9 @@ class PabClient(object):
         """Send a :data:`pirate.panel.config.Goal`; (False, reason) when the server would refuse it."""
         if self._server.active:
             return False, 'a PAB is running (%s)' % self._server.active
+        if not self._client.wait_for_server(rospy.Duration(SERVER_CONNECT_S)):
+            return False, ('the panel is not connected to the Pirate Server yet (its action topics did not connect '
+                           'within %.0f s): nothing was sent; press again' % SERVER_CONNECT_S)
         self._handle = self._client.send_goal(
             PirateGoal(name=goal.name, pipe_diameter=self._pipe_diameter, distance=goal.distance,
                        speed=goal.speed, option=goal.option), transition_cb=self._transition)
