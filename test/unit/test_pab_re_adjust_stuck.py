@@ -62,6 +62,10 @@ def test_a_re_adjust_that_moves_is_not_called_stuck():
     assert full_front_clamps(robot) == 4
 
 
+View = collections.namedtuple('View', 'orientation')
+Ctx = collections.namedtuple('Ctx', 'feed guards')
+
+
 class Rolls(object):
     """A feed whose robot lies at the next of ``rolls`` each time it is read."""
 
@@ -69,12 +73,12 @@ class Rolls(object):
         self.rolls = list(rolls)
 
     def latest(self):
-        return collections.namedtuple('View', 'orientation')(self.rolls.pop(0))
+        return View(self.rolls.pop(0))
 
 
 def watch(rolls):
     """Clamp Straight's watch after each of ``rolls`` (rad); the reason it raised, or None."""
-    clamp, ctx = Clamp(), collections.namedtuple('Ctx', 'feed guards')(Rolls(rolls), GUARDS)
+    clamp, ctx = Clamp(), Ctx(Rolls(rolls), GUARDS)
     try:
         for _ in rolls:
             clamp._watch_re_adjust(ctx)

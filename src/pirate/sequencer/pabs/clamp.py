@@ -287,8 +287,8 @@ class Clamp(Pab):
         60-state cap (100 s): the front never lies where the encoder says,
         so its clamp pulls the rear off the band every time.
         """
-        view = ctx.feed.latest()
-        if in_region(view.orientation, region_around(ctx.guards, 'straight', self.target)):
+        view, band = ctx.feed.latest(), region_around(ctx.guards, 'straight', self.target)
+        if in_region(view.orientation, band):
             self.off_band_rolls = []
             return
         self.off_band_rolls.append(view.orientation)
@@ -296,11 +296,10 @@ class Clamp(Pab):
         passes = int(settings['same_roll_passes'])
         last = self.off_band_rolls[-passes:]
         if len(last) == passes and max(last) - min(last) <= settings['same_roll_rad']:
-            low, high = region_around(ctx.guards, 'straight', self.target)
             raise PabFailed('%s does not converge: %d full front clamps in a row left the robot at %.3f to %.3f '
                             'rad, outside the straight band %.3f to %.3f rad; the front part does not lie where the '
                             'rotation encoder says (was the robot twisted when it was switched on? the encoder '
-                            'is zeroed at start-up)' % (self.name, len(last), min(last), max(last), low, high))
+                            'is zeroed at start-up)' % ((self.name, len(last), min(last), max(last)) + band))
 
     def _clamp_front_custom(self, ctx):
         kind = 'clamp_front_custom' if self.front_custom_done else 'clamp_front_custom_first'
