@@ -129,6 +129,11 @@ SS_IMU_X, SS_IMU_Y, SS_IMU_Z, SS_IMU_U, SS_IMU_V, SS_IMU_W = 3, 4, 5, 6, 7, 8
 ROTATION_BOARD = 24
 #: Odometry and wheel speed: every drive board reports its own wheel (all six
 #: share one setpoint); the state fuses them (pirate.state.odometry, median).
+#: The three wheels of each part's V (front: Bend I, Bend II and the front
+#: rotational module; rear: the rear rotational module, Bend III, Bend IV):
+#: a part's own odometry, for a step that drives on one clamped part while
+#: the other lies open on its shells (pirate.sequencer.pabs.turn_motions).
+PART_WHEEL_BOARDS = {'front': (22, 23, 24), 'rear': (25, 26, 27)}
 #: Boards whose readings the PABs use: front tilt (21), Bend I-IV angles and
 #: odometry (22, 23, 26, 27), rotation (24), orientation (25). A silent camera
 #: (20) or rear (28) board makes the state stale but stops no PAB.

@@ -200,7 +200,8 @@ class PirateManager(object):
             return
         self.feed.push(RobotView(dict(zip(msg.name, msg.position)), msg.orientation,
                                  msg.odometry, msg.velocity, msg.header.stamp.to_sec(),
-                                 dict(zip(msg.name, msg.effort))))
+                                 dict(zip(msg.name, msg.effort)),
+                                 {'front': msg.odometry_front, 'rear': msg.odometry_rear}))
 
     def _measured_angles(self):
         """Joint angles (rad) of a fresh robot state, or None."""

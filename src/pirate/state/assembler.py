@@ -49,7 +49,7 @@ WHEEL_READING_MAX_MM_S = 2 * 170.0
 DUTY_READING_MAX = 256
 
 Snapshot = collections.namedtuple(
-    'Snapshot', 'name position effort orientation odometry velocity stale age silent')
+    'Snapshot', 'name position effort orientation odometry velocity stale age silent part_odometry')
 
 
 class BadState(ValueError):
@@ -114,7 +114,8 @@ class StateAssembler(object):
         silent = self.silent(now)
         return Snapshot(list(tables.JOINT_NAMES), positions, efforts, self._orientation,
                         self._odometry.mm, velocity,
-                        age > self.stale_after or bool(silent), age, silent)
+                        age > self.stale_after or bool(silent), age, silent,
+                        {part: self._odometry.part_mm(part) for part in tables.PART_WHEEL_BOARDS})
 
 
 def pab_blocker(stale, silent, age):

@@ -30,9 +30,11 @@ import time
 #: ``orientation`` is the rear part's roll (rad, Fig 4.7), ``odometry`` mm
 #: (NaN when the robot reports none), ``stamp`` robot time in s, ``efforts``
 #: joint name -> spring effort in mNm (None when the source has no springs;
-#: the clamp state needs them: a clamp means pressing the wall, issue 10).
-RobotView = collections.namedtuple('RobotView', 'angles orientation odometry velocity stamp efforts',
-                                   defaults=(None,))
+#: the clamp state needs them: a clamp means pressing the wall, issue 10),
+#: ``part_odometry`` part name ('front' / 'rear') -> that part's own wheels'
+#: odometry in mm (None when the source has none; pirate.state.odometry).
+RobotView = collections.namedtuple('RobotView', 'angles orientation odometry velocity stamp efforts part_odometry',
+                                   defaults=(None, None))
 
 POLL_S = 0.02
 

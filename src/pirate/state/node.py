@@ -92,6 +92,7 @@ class PirateStateNode(object):
         now = rospy.Time.now()
         state = RobotState(name=snap.name, position=snap.position, effort=snap.effort,
                            orientation=snap.orientation, odometry=snap.odometry,
+                           odometry_front=snap.part_odometry['front'], odometry_rear=snap.part_odometry['rear'],
                            velocity=snap.velocity, stale=snap.stale, silent_boards=list(snap.silent))
         state.header.stamp = now
         self._state_pub.publish(state)

@@ -11,6 +11,13 @@ while at most two of the six wheels misbehave the median is a wheel that
 rolls on the wall, and a dead or silent encoder only drops out of the vote
 (a board that did not report in the cycle does not vote).
 
+Three wheels spinning free outvote nothing: lying on its side with one V
+open, that part rests on its shells and its three wheels all count the
+setpoint (twin: 251 mm counted for 96 mm travelled, notes/issue-10.md). So
+each part's three wheels are also fused on their own, the same way
+(:meth:`WheelOdometry.part_mm`): a step that drives on one clamped part
+reads that part's travel.
+
 Counts are in the robot's forward sense on every board (the twin, the
 fake and the firmware-in-the-loop boards report them so; the mirrored
 mounting of the apex modules, tables.WHEEL_SIGN, is undone before they
@@ -21,14 +28,28 @@ import statistics
 from pirate.robot import tables, units
 
 
-class WheelOdometry(object):
-    """Fuses the drive boards' odometry counts into one travel, mm."""
+class _Fused(object):
+    """One group of wheels: per cycle, the median of their increments, counts."""
 
-    def __init__(self, boards=tables.DRIVE_BOARDS):
+    def __init__(self, boards):
+        self.boards = frozenset(boards)
+        self.counts = 0.0
+
+    def fold(self, pending):
+        votes = [counts for board, counts in pending.items() if board in self.boards]
+        if votes:
+            self.counts += statistics.median(votes)
+
+
+class WheelOdometry(object):
+    """Fuses the drive boards' odometry counts into one travel, mm, and one per part."""
+
+    def __init__(self, boards=tables.DRIVE_BOARDS, parts=tables.PART_WHEEL_BOARDS):
         self.boards = tuple(boards)
         self._last_raw = {}          # board -> last raw int16 count
         self._pending = {}           # board -> counts since the last fold
-        self._counts = 0.0           # fused travel, counts
+        self._robot = _Fused(self.boards)
+        self._parts = {part: _Fused(wheels) for part, wheels in parts.items()}
 
     def update(self, board, raw):
         """One drive board's raw (int16, wrapping) odometry count."""
@@ -40,11 +61,15 @@ class WheelOdometry(object):
 
     def fold(self):
         """End of a refresh cycle: add the median of the wheels' increments."""
-        if self._pending:
-            self._counts += statistics.median(self._pending.values())
+        for fused in (self._robot,) + tuple(self._parts.values()):
+            fused.fold(self._pending)
         self._pending = {}
 
     @property
     def mm(self):
         """Fused travel since the first readings, mm (forward positive)."""
-        return units.odometry_to_mm(self._counts)
+        return units.odometry_to_mm(self._robot.counts)
+
+    def part_mm(self, part):
+        """``part``'s ('front' / 'rear') three wheels fused alike, mm since the first readings."""
+        return units.odometry_to_mm(self._parts[part].counts)
