@@ -64,7 +64,8 @@ SIDEWAYS_TURNS = [(pattern, side, 90) for pattern in sorted(TURNS) for side in s
 WORLDS = ('bend_down_90', 'bend_up_90', 'bend_left_90', 'bend_right_90', 'tee_run_up_90', 'tee_run_up_110',
           'tee_run_down_90', 'tees_run_up_90', 'bends_left_90', 'tee_branch_left_90', 'tee_branch_right_90',
           'bend_left_110', 'bend_right_110', 'bends_right_110', 'tee_branch_left_110', 'tee_branch_right_110',
-          'tee_run_branch_left_90', 'tee_run_branch_right_90', 'tee_run_branch_left_110', 'tee_run_branch_right_110')
+          'tee_run_branch_left_90', 'tee_run_branch_right_90', 'tee_run_branch_left_110', 'tee_run_branch_right_110',
+          'tee_run_left_90', 'tee_run_right_90', 'tee_run_left_110', 'tee_run_right_110')
 
 
 @pytest.mark.parametrize('world', WORLDS)

@@ -246,7 +246,7 @@ def _check_start_clamp(where, step):
     (:func:`required_clamp`); the junction PAB must declare it starts from it."""
     if step.junction is None or step.holds is None:
         return
-    starts = pab_start_clamps(step.pab, step.option)
+    starts = pab_start_clamps(step.pab, step.option, step.pipe_diameter)
     if label(step.holds) not in starts:
         raise PlanError('%s: the route holds clamp %s there (the front V facing %s), but %s %s starts from '
                         'clamp %s only; the robot cannot take this route yet'

@@ -8,18 +8,22 @@ the open side with which no contact is possible". One table serves both
 junction kinds and every direction; what differs is data: the clamp the
 robot must hold before it starts (straight for a turn up or down,
 sideways toward a left / right turn, as :mod:`pirate.sequencer.junctions`
-rules; straight to go straight on).
+rules; straight on, the clamp whose front V's apex faces the open side:
+straight for a side open upward, sideways toward one open left or right).
 
 Straight on (T-joint): look for the junction (drive until the front V
 loses its wall, :mod:`pirate.sequencer.junction_sensing`, or abort after
 the goal's distance with ``junction_missing``), stop, open the front V
 partly (the partial unclamp leaves it held by the worms), drive the front
 part across, clamp the front, open the rear V, drive the rear part across,
-clamp the rear: the robot ends clamped in the pipe after the junction; if
-re-clamping rolled it out of the straight region (the twin rolled 0.05 rad
-doing so, bench/pab_junction_sweep), Clamp Straight's own machine
-re-adjusts it. The part that crosses is open, so neither V presses toward
-the open side "with which no contact is possible".
+clamp the rear: the robot ends clamped in the pipe after the junction, in
+the clamp it started in; if re-clamping rolled it out of that clamp's
+straight region (the twin rolled 0.05 rad doing so,
+bench/pab_junction_sweep), the clamp machine re-adjusts it. The part that
+crosses is open, so neither V presses toward the open side "with which no
+contact is possible"; lying on a side each V instead presses lightly
+(:func:`~pirate.sequencer.pabs.turn_motions.open_to_cross`). Each part
+crosses by the odometry of the other, clamped one.
 
 A turn (mitre bend LEFT / RIGHT; T-joint LEFT / RIGHT, entered through its
 branch turning into the run whose other end is open, or entered through its
@@ -240,18 +244,16 @@ UPRIGHT = math.pi / 2
 ORIENTATIONS = {'straight': UPRIGHT, 'sideways LEFT': math.pi, 'sideways RIGHT': 0.0}
 #: goal code -> (kind, what it is called, server state (Fig 4.2),
 #: {option: (direction, clamps allowed before it)}).
-#: A turn needs the clamp of pirate.sequencer.junctions.required_clamp. Straight
-#: on through a T-joint starts clamped straight: lying on a side the twin
-#: sensed the open side but the front part, driven across by odometry with
-#: the odometry wheel (Bend I) on the open part, moved 85 mm for 210 mm
-#: counted and could not clamp over the hole (notes/issue-10.md).
+#: A turn needs the clamp of pirate.sequencer.junctions.required_clamp; straight
+#: on through a T-joint, the clamp facing its open side (the same module's
+#: FACING_OPEN_SIDE), the first of three the goal may start from.
 JUNCTIONS = {
     codes.MITRE_BEND: ('mitre', 'mitre bend', 'Taking Mitre bend', {
         codes.LEFT: ('left', ('sideways LEFT',)), codes.RIGHT: ('right', ('sideways RIGHT',)),
         codes.UP: ('up', ('straight',)), codes.DOWN: ('down', ('straight',))}),
     codes.T_JOINT: ('tee', 'T-joint', 'Taking T-joint', {
         codes.LEFT: ('left', ('sideways LEFT',)), codes.RIGHT: ('right', ('sideways RIGHT',)),
-        codes.STRAIGHT: ('straight', ('straight',))}),
+        codes.STRAIGHT: ('straight', ('straight', 'sideways LEFT', 'sideways RIGHT'))}),
 }
 #: (kind, direction) this PAB takes today; the rest are refused with the reason.
 TAKEN = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right'), ('tee', 'left'), ('tee', 'right')}
@@ -264,6 +266,31 @@ NOT_TAKEN = {
     'down': "steering down needs the V's apex down: the front tilt stops at -0.1 rad and no clamp holds the "
             'robot upside down',
 }
+
+#: Why straight on lying on a side has no row in a diameter (config/guards_<mm>.yaml junction
+#: straight_sideways_speed_min absent; notes/issue-10.md, stop 30).
+SIDEWAYS_STRAIGHT_WHY = {
+    90: 'in the twin it crossed from 10 of 14 approach rolls at 50 mm/s (goal 95 %): the open front part, '
+        "pushed across on its shells, stalled at the hole's far edge, or Bend I's wheel ran into the hole "
+        'unsensed and stalled there (the aborts left the robot in the safe hold; slower searches stalled more)',
+    110: 'in the twin lying on a side the front V did not sense the hole reliably: Bend I, settling after the '
+         'clamp, read as a hole 15-19 mm after the start (the robot then crossed short of the T-joint), or its '
+         'wheel ran into the hole unsensed and stalled at the far edge'}
+
+
+def straight_sideways_problem(guards, speed):
+    """Why straight on through a T-joint lying on a side cannot run at
+    ``speed`` mm/s in ``guards``' diameter, or None."""
+    low = guards.row('junction').get('straight_sideways_speed_min')
+    if low is None:
+        return ('straight on lying on a side is not taken in a %d mm pipe: %s'
+                % (guards.pipe_diameter, SIDEWAYS_STRAIGHT_WHY.get(guards.pipe_diameter, 'not measured')))
+    if speed < float(low):
+        return ('straight on lying on a side needs at least %g mm/s (config/guards_%d.yaml junction '
+                'straight_sideways_speed_min; in the twin searching slower, the open front part stalled at the hole)'
+                % (float(low), guards.pipe_diameter))
+    return None
+
 
 #: Why a junction PAB refuses a negative search distance whatever the robot's state.
 REAR_FIRST_WHY = 'taking a junction rear first is not built'
@@ -311,6 +338,7 @@ class TakeJunction(Pab):
         self.carried = None          # PastCorner: the server's record of this goal's last run
         self.past = None             # PastCorner of this run, once its rear came round
         self.backed_off = 0          # times the steering backed off an edge
+        self.target_rad = None       # roll of the clamp held at the start (:meth:`_target`)
 
     # --- what an unfinished run leaves ------------------------------------------
     def carry_on(self, record):
@@ -359,7 +387,14 @@ class TakeJunction(Pab):
         speed = motions.search_speed(goal, guards)
         # a turn's own measured range first: it says more than the drive's limits
         return (self._check_distance(goal, guards) or (self.turning and _turn_speed_problem(goal, guards))
-                or speed_problem(speed, speed, guards.drive) or self._check_clamp(view, guards))
+                or speed_problem(speed, speed, guards.drive) or self._check_clamp(view, guards)
+                or self._check_straight_on_side(view, guards, speed))
+
+    def _check_straight_on_side(self, view, guards, speed):
+        """Straight on from a sideways clamp: taken where its row says, at its speeds."""
+        if self.turning or self._target(view, guards) == UPRIGHT:
+            return None
+        return straight_sideways_problem(guards, speed)
 
     @staticmethod
     def _check_distance(goal, guards):
@@ -414,14 +449,21 @@ class TakeJunction(Pab):
         sensed = clamp_state.sensed(guards, view)
         corner = corner_sensing.facts(guards, view)
         return Facts(found=found, front=sensed.front == clamp_state.FULL, rear=sensed.rear == clamp_state.FULL,
-                     straight=in_region(view.orientation, region_around(guards, 'straight', self._target())),
+                     straight=in_region(view.orientation, region_around(guards, 'straight',
+                                                                        self._target(view, guards))),
                      turn=self.turning,
                      toward=in_region(view.orientation, region_around(guards, 'nominal', self._target())),
                      **dict(corner, **self._carried_facts(guards, view)))
 
-    def _target(self):
-        """The roll (rad) of the clamp this goal starts in: the side of a turn, upright straight on."""
-        return ORIENTATIONS[self.clamps[0]]
+    def _target(self, view=None, guards=None):
+        """The roll (rad) of the clamp this goal starts in: the side of a
+        turn; straight on, the allowed clamp whose straight region held the
+        robot's roll the first time a ``view`` was read (the goal's start;
+        the clamp it ends in), else the first allowed one."""
+        if self.target_rad is None and view is not None:
+            held = self._held(view, guards)
+            self.target_rad = held[0] if held else None
+        return ORIENTATIONS[self.clamps[0]] if self.target_rad is None else self.target_rad
 
     def _held(self, view, guards):
         """Orientations (rad) of the allowed clamps whose straight region holds the robot's roll."""
@@ -442,7 +484,7 @@ class TakeJunction(Pab):
             UNCLAMPING_FRONT: self._unclamp_front,
             CROSSING_FRONT: lambda ctx: motions.drive_across(ctx, 'front'),
             CLAMPING_FRONT: lambda ctx: motions.clamp_full(ctx, 'front'),
-            UNCLAMPING_REAR: lambda ctx: ctx.prims.unclamp('rear', partial=True),
+            UNCLAMPING_REAR: lambda ctx: motions.open_to_cross(ctx, 'rear'),
             CROSSING_REAR: lambda ctx: motions.drive_across(ctx, 'rear'),
             CLAMPING_REAR: lambda ctx: motions.clamp_full(ctx, 'rear'),
             STRAIGHTENING: lambda ctx: Clamp(self._target()).run(ctx),
@@ -455,15 +497,19 @@ class TakeJunction(Pab):
         }
 
     def _unclamp_front(self, ctx):
-        """Open the front V partly; a turn then levels the front part on its
+        """Straight on, ready the front to cross (:func:`~pirate.sequencer.pabs.turn_motions.open_to_cross`).
+        A turn opens the front V partly, then levels the front part on its
         side where its row says (``level_front``, :func:`~pirate.sequencer.pabs.turn_motions.level_front`). Only
         here, at a turn's start: a turn resumed into its steering does not
         level (twin, 110 mm T-joint entered through its run, re-sent after a
         cancel while steering: levelled again, the rear's roll drifted to
         2.94 rad, past the band of the sideways clamp, and its clamp past the
         corner timed out in 6 of 10; notes/issue-10.md "Levelling the front")."""
+        if not self.turning:
+            motions.open_to_cross(ctx, 'front')
+            return
         ctx.prims.unclamp('front', partial=True)
-        if self.turning and ctx.guards.row('turn').get('level_front'):
+        if ctx.guards.row('turn').get('level_front'):
             motions.level_front(ctx, self._target())
 
     def facts(self, ctx):

@@ -11,7 +11,7 @@ import math
 
 from pirate.robot import units
 from pirate.sequencer import clamp_state
-from pirate.sequencer.pabs.wheels import STANDSTILL_MM_S, Progress, stop_wheels
+from pirate.sequencer.pabs.wheels import ROBOT_TRAVEL, STANDSTILL_MM_S, Progress, Travel, stop_wheels
 from pirate.state.feed import TimedOut
 
 
@@ -56,21 +56,60 @@ def drive_until(ctx, name, speed, guard, text, limit_s):
         ctx.prims.drive_at_velocity(0.0)
 
 
-def drive_by(ctx, name, distance):
-    """Drive ``distance`` mm of odometry at the search speed, then stop."""
-    speed = search_speed(ctx.goal, ctx.guards)
+def drive_by(ctx, name, distance, travel=ROBOT_TRAVEL, speed=None):
+    """Drive ``distance`` mm of odometry (``travel``: which, wheels.Travel) at
+    ``speed`` mm/s (default: the search speed), then stop."""
+    speed = speed or search_speed(ctx.goal, ctx.guards)
     start = ctx.feed.latest()
-    progress = Progress(ctx.guards.drive, start)
+    progress = Progress(ctx.guards.drive, start, travel)
     ctx.prims.drive_at_velocity(speed)
-    ctx.prims.wait_for(name, lambda v: progress.check(v) and v.odometry - start.odometry >= distance,
-                       'odometry +%.0f mm' % distance, time_bound(ctx, distance, speed))
+    ctx.prims.wait_for(name, lambda v: progress.check(v) and travel(v) - travel(start) >= distance,
+                       'odometry +%.0f mm (%s)' % (distance, travel.text), time_bound(ctx, distance, speed))
     stop_wheels(ctx)
+
+
+#: The part that stays clamped while the other crosses.
+HOLDING = {'front': 'rear', 'rear': 'front'}
 
 
 def drive_across(ctx, part):
     """Drive the junction row's ``cross_<part>_mm`` so ``part`` ('front' /
-    'rear') crosses the junction straight on."""
-    drive_by(ctx, 'drive %s across' % part, float(ctx.guards.row('junction')['cross_%s_mm' % part]))
+    'rear') crosses the junction straight on, by the odometry of the other
+    part, clamped on the wall: the crossing part's V is open, and lying on
+    a side that part rests on its shells while its three wheels spin free
+    (twin: 251 mm of the robot's odometry for 96 mm travelled, rear over a
+    T-joint's side hole, notes/issue-10.md). Lying on a side it drives at
+    least the row's ``cross_speed_sideways``: the open front part on its
+    shells, pushed at 25 mm/s, stalled at the hole (twin, 90 mm, stop 30)."""
+    row, view = ctx.guards.row('junction'), ctx.feed.latest()
+    speed = search_speed(ctx.goal, ctx.guards)
+    if lying_on_a_side(ctx.guards, view, part):
+        speed = max(speed, float(row['cross_speed_sideways']))
+    drive_by(ctx, 'drive %s across' % part, float(row['cross_%s_mm' % part]), Travel(HOLDING[part]), speed)
+
+
+def lying_on_a_side(guards, view, part):
+    """True when ``part``'s roll (its own, clamp_state.part_roll) is on a side."""
+    return clamp_state.on_side(guards, clamp_state.part_roll(part, view.angles, view.orientation))
+
+
+def open_to_cross(ctx, part):
+    """Ready ``part`` ('front' / 'rear') to cross a T-joint straight on:
+    open its V partly (held by the worms), so it does not press toward the
+    open side. Lying on a side, the part pulled across (the rear) would rest
+    on its shells, and the front V alone did not drag it (twin: stalled
+    after 40 mm); clamped fully, its apex wheel dropped into the hole and
+    caught the far edge. So there its outer bend presses lightly in torque
+    (the junction row's ``cross_press_sideways_<part>``, counts; 0: open
+    partly), the inner at 0: its wheels keep the walls and drive, and its
+    apex gives way over the hole (notes/issue-10.md, stop 30)."""
+    view = ctx.feed.latest()
+    press = float(ctx.guards.row('junction')['cross_press_sideways_%s' % part])
+    if not press or not lying_on_a_side(ctx.guards, view, part):
+        ctx.prims.unclamp(part, partial=True)
+        return
+    pair = ctx.guards.pair(full_row_of(ctx.guards, view, part), part)
+    torque(ctx.prims, **{pair.outer.joint: int(math.copysign(press, pair.outer.setpoint)), pair.inner.joint: 0})
 
 
 def torque(prims, **counts):

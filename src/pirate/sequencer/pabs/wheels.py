@@ -42,23 +42,39 @@ class Progress(object):
     drive at 20 mm/s gained 1.8 mm in its first 0.4 s and aborted
     (seq_mission, a CI run)."""
 
-    def __init__(self, settings, view):
+    def __init__(self, settings, view, travel=None):
         self.window_s = settings['no_progress_s']
         self.min_mm = settings['no_progress_mm']
-        self.mark_mm, self.mark_s = view.odometry, view.stamp
+        self.travel = travel or ROBOT_TRAVEL
+        self.mark_mm, self.mark_s = self.travel(view), view.stamp
         self.allowed_s = self.window_s + settings['no_progress_start_s']
 
     def check(self, view):
         """True to go on; PabFailed when the odometry stood still too long."""
-        if abs(view.odometry - self.mark_mm) >= self.min_mm:
-            self.mark_mm, self.mark_s = view.odometry, view.stamp
+        if abs(self.travel(view) - self.mark_mm) >= self.min_mm:
+            self.mark_mm, self.mark_s = self.travel(view), view.stamp
             self.allowed_s = self.window_s
         elif view.stamp - self.mark_s > self.allowed_s:
             raise PabFailed('no odometry progress for %.1f s with the wheels commanded '
-                            '(odometry %.1f mm, the median of the drive boards: boards silent, or the wheels stalled, '
+                            '(odometry %.1f mm, %s: boards silent, or the wheels stalled, '
                             'e.g. the robot against an end cap or an obstacle)'
-                            % (view.stamp - self.mark_s, view.odometry))
+                            % (view.stamp - self.mark_s, self.travel(view), self.travel.text))
         return True
+
+
+class Travel(object):
+    """Which odometry a drive reads (mm from a RobotView): the robot's, or
+    one part's own wheels (pirate.state.odometry)."""
+
+    def __init__(self, part=None):
+        self.part = part
+        self.text = ("the median of the %s part's wheels" % part if part else 'the median of the drive boards')
+
+    def __call__(self, view):
+        return view.odometry if self.part is None else view.part_odometry[self.part]
+
+
+ROBOT_TRAVEL = Travel()
 
 
 def stop_wheels(ctx):
