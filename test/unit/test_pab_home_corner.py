@@ -171,34 +171,43 @@ def test_home_after_a_turn_stopped_bringing_the_rear_is_refused_while_the_middle
         assert 'stopped bringing the rear through here, Bend III 1.18 rad: the middle swinging round' in reason
 
 
-#: 90 mm mitre bend LEFT cancelled steering its front in, 19, 25 and 26 robot s
-#: in (`... --cancel-at 19 25 26`): Home's unclamp front blocked at 26 s; at 19 s
-#: the front lowered at the end pried the Bend I wheel on the wall with 16.9 N.
-STEERING_90 = {19: ((1.16, -0.55, 0.36, 0.00, 0.41, -0.82), 3.13, 234.0),
-               25: ((0.71, 0.85, 0.56, 0.00, 0.42, -0.82), 3.12, 368.0),
-               26: ((0.54, 0.77, 0.77, 0.00, 0.41, -0.81), 3.12, 389.0)}
+#: Mitre bends cancelled steering their front in, 2 s of safe hold: (mm, cancel s) ->
+#: (joint angles rad in JOINTS order, roll rad, odometry mm). 90 mm LEFT 19, 25 and
+#: 26 robot s in (`... --cancel-at 19 25 26`): Home's unclamp front blocked at 26 s;
+#: at 19 s the front lowered at the end pried the Bend I wheel on the wall with
+#: 16.9 N. 110 mm RIGHT, the second bend of bends_right_110, 36.5 and 38 s in
+#: (`... --mm 110 --side right --world bends_right_110 --turns-before 1`): at 38 s,
+#: front tilt 0.64, Home's unclamp front blocked (also in CI, rostest
+#: pab_mitre_bend_110, seed 36982); at 36.5 s it unclamped in 6.3 s.
+STEERING = {(90, 19): ((1.16, -0.55, 0.36, 0.00, 0.41, -0.82), 3.13, 234.0),
+            (90, 25): ((0.71, 0.85, 0.56, 0.00, 0.42, -0.82), 3.12, 368.0),
+            (90, 26): ((0.54, 0.77, 0.77, 0.00, 0.41, -0.81), 3.12, 389.0),
+            (110, 36.5): ((0.90, 0.30, 0.85, 0.07, 0.65, -1.30), 0.06, 1903.0),
+            (110, 38): ((0.64, 0.43, 1.01, 0.05, 0.65, -1.29), 0.04, 1940.0)}
 
 
-def steering_home(cancel_s, after_state=junction.STEERING_FRONT):
-    angles, roll, odometry_mm = STEERING_90[cancel_s]
+def steering_home(cancel_s, after_state=junction.STEERING_FRONT, mm=90):
+    angles, roll, odometry_mm = STEERING[mm, cancel_s]
     view = RobotView(dict(zip(JOINTS, angles)), roll, odometry_mm, 0.0, 1.0, {})
-    goal = PirateGoal(name=codes.HOME, pipe_diameter=90)
+    goal = PirateGoal(name=codes.HOME, pipe_diameter=mm)
     pab = Home.for_goal(goal)
     pab.follows(Ended('Taking Mitre bend', after_state, odometry_mm, 'preempted'))
-    ctx = types.SimpleNamespace(feed=types.SimpleNamespace(latest=lambda: view), guards=BOOK.for_diameter(90))
+    ctx = types.SimpleNamespace(feed=types.SimpleNamespace(latest=lambda: view), guards=BOOK.for_diameter(mm))
     return pab.check(goal, view, ctx.guards), pab.facts(ctx)
 
 
-@pytest.mark.parametrize('cancel_s', [19, 25])
-def test_home_after_steering_starts_but_leaves_the_front_up(cancel_s):
-    reason, facts = steering_home(cancel_s)
+@pytest.mark.parametrize('mm, cancel_s', [(90, 19), (90, 25), (110, 36.5)])
+def test_home_after_steering_starts_but_leaves_the_front_up(mm, cancel_s):
+    reason, facts = steering_home(cancel_s, mm=mm)
     assert reason is None and not facts.along
 
 
-def test_home_after_steering_with_the_front_dropped_into_the_opening_is_refused():
-    reason, _ = steering_home(26)
-    assert reason is not None and 'front tilt 0.54 rad: the front module dropped into the opening' in reason
+@pytest.mark.parametrize('mm, cancel_s, tilt', [(90, 26, '0.54'), (110, 38, '0.64')])
+def test_home_after_steering_with_the_front_dropped_into_the_opening_is_refused(mm, cancel_s, tilt):
+    reason, _ = steering_home(cancel_s, mm=mm)
+    assert reason is not None and 'front tilt %s rad: the front module dropped into the opening' % tilt in reason
     assert 'stopped steering the front into the new pipe here' in reason
+    assert 're-send the turn toward the %s' % ('LEFT' if mm == 90 else 'RIGHT') in reason
 
 
 def test_after_another_goal_the_same_pose_is_along_and_not_refused():
