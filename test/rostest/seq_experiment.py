@@ -52,6 +52,9 @@ STRAIGHT = (1.52, 1.62)     # Table 5.4
 SAFE_INDICES = (1, 2, 3, 6, 7, 11)   # front, bends I-IV, wheels
 BETWEEN_PRIMITIVES_S = 0.2  # sim s: a primitive that reached this close before the cancel ended the PAB between primitives (two Mega cycles)
 CLAMP_STRAIGHT = PirateGoal.CLAMP_STRAIGHT
+#: Environment variable that fixes the random cancel's seed, to replay a run a
+#: log names (``PIRATE_CANCEL_SEED=36982 bash scripts/run_rostests pab_mitre_bend_110``).
+SEED_ENV = 'PIRATE_CANCEL_SEED'
 
 
 def make_goal(spec):
@@ -168,8 +171,9 @@ class SequencerTest(unittest.TestCase):
         (default ``~cancel_within``) s (seed logged), and check what a cancel
         must leave: preempted with the trace ending preempted and the safe hold
         on the wire (or it had already succeeded). Returns the seed, for the
-        caller's messages; the goal's final text is kept in ``self.cancelled_text``."""
-        seed = int(time.time() * 1000) % 100000
+        caller's messages; the goal's final text is kept in ``self.cancelled_text``.
+        The seed comes from the clock, or from :data:`SEED_ENV` when set."""
+        seed = int(os.environ.get(SEED_ENV) or int(time.time() * 1000) % 100000)
         within_s = float(rospy.get_param('~cancel_within')) if within_s is None else within_s
         cancel_after = random.Random(seed).uniform(0.2, within_s)
         rospy.loginfo('%s: cancelled after %.2f sim s (seed %d)', tag, cancel_after, seed)
