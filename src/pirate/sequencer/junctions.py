@@ -71,18 +71,17 @@ def label(clamp):
     return 'straight' if clamp == STRAIGHT_CLAMP else 'sideways %s' % clamp.side
 
 
-def pab_start_clamps(pab, option, pipe_diameter=None):
+def pab_start_clamps(pab, option, guards=None):
     """Names (:func:`label`) of the clamps the junction PAB ``pab`` (goal
     name, 'T_JOINT' or 'MITRE_BEND') declares it starts ``option`` (an
     option name, e.g. 'STRAIGHT') from; () for an option it has none for.
-    With ``pipe_diameter`` (mm), straight on from a sideways clamp only
-    where that diameter's guards take it (junction.straight_sideways_problem)."""
+    With ``guards`` (a diameter's, pirate.sequencer.guards), straight on from
+    a sideways clamp only where they take it (junction.straight_sideways_problem)."""
     from pirate.sequencer import goals                  # here: the PAB module may import this one
-    from pirate.sequencer.guards import GuardBook, load_files
     from pirate.sequencer.pabs.junction import JUNCTIONS, straight_sideways_problem
     clamps = JUNCTIONS[goals.CODES[pab]][3].get(goals.OPTIONS.get(option), (None, ()))[1]
-    if option != 'STRAIGHT' or pipe_diameter is None:
+    if option != 'STRAIGHT' or guards is None:
         return clamps
-    if straight_sideways_problem(GuardBook(*load_files()).for_diameter(pipe_diameter), float('inf')):
+    if straight_sideways_problem(guards, float('inf')):
         return tuple(clamp for clamp in clamps if clamp == label(STRAIGHT_CLAMP))
     return clamps

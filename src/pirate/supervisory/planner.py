@@ -19,11 +19,13 @@ Positions are metres along the map's path (pirate.world.network), of the
 robot's middle. Every step says where it starts, where it should end and
 which junction it should meet, which is what localisation checks against.
 Pure: no ROS; the map, the settings (config/supervisory.yaml) and the
-Drive limit (config/sequencer.yaml) are passed in.
+Drive limit (config/sequencer.yaml) are passed in; :func:`check_runnable`
+reads the guard files once unless given them.
 """
 import collections
 
 from pirate.sequencer import goals
+from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.junctions import STRAIGHT_CLAMP, is_turn, label, pab_start_clamps, required_clamp
 from pirate.sequencer.pabs.junction import REAR_FIRST_WHY
 from pirate.world.network import turns_at_corner
@@ -209,7 +211,7 @@ def route_of(lines):
     return map_name, rest.rsplit(' (', 1)[0].split(ROUTE_JOIN)
 
 
-def check_runnable(route_plan, built=None):
+def check_runnable(route_plan, built=None, book=None):
     """Raise :class:`PlanError` naming the first step the Pirate Server cannot
     run (a PAB it does not have yet, an option its goal cannot carry, or a
     junction PAB that does not start from the clamp the route holds there, a
@@ -217,8 +219,10 @@ def check_runnable(route_plan, built=None):
     so that a mission through it is refused before the robot moves rather
     than stopped at that junction (a junction PAB that does not take that
     direction yet included). ``built(pab, option, rear_first=False)``: default
-    pirate.sequencer.goals.built (asked with ``rear_first`` only for a step on the way back)."""
-    built = built or goals.built
+    pirate.sequencer.goals.built (asked with ``rear_first`` only for a step on the way back).
+    ``book``: the guards each step's start clamp is checked against (default:
+    config/guards_<mm>.yaml, read once here)."""
+    built, book = built or goals.built, book or GuardBook(*load_files())
     for number, step in enumerate(route_plan.steps, 1):
         where = 'step %d (%s%s%s)' % (number, step.pab, ' %s' % step.option if step.option else '',
                                       ', %s' % step.junction.name if step.junction is not None else '')
@@ -233,7 +237,7 @@ def check_runnable(route_plan, built=None):
             raise PlanError('%s: the Pirate Server cannot take %s %s rear first yet (%s); the robot cannot take '
                             'this route back through %s' % (where, step.pab, step.option, REAR_FIRST_WHY,
                                                             step.junction.name))
-        _check_start_clamp(where, step)
+        _check_start_clamp(where, step, book)
 
 
 def _rear_first(step):
@@ -241,12 +245,14 @@ def _rear_first(step):
     return step.junction is not None and step.distance_mm < 0
 
 
-def _check_start_clamp(where, step):
+def _check_start_clamp(where, step, book):
     """A junction step starts from the clamp the route holds there
-    (:func:`required_clamp`); the junction PAB must declare it starts from it."""
+    (:func:`required_clamp`); the junction PAB must declare it starts from it
+    in the step's pipe (``book``: the guards of each diameter)."""
     if step.junction is None or step.holds is None:
         return
-    starts = pab_start_clamps(step.pab, step.option, step.pipe_diameter)
+    guards = book.for_diameter(step.pipe_diameter) if step.pipe_diameter else None
+    starts = pab_start_clamps(step.pab, step.option, guards)
     if label(step.holds) not in starts:
         raise PlanError('%s: the route holds clamp %s there (the front V facing %s), but %s %s starts from '
                         'clamp %s only; the robot cannot take this route yet'
