@@ -57,6 +57,17 @@ def panel_device(connected, wanted, name):
                   % (wanted or ''), values)
 
 
+def panel_goals(connected):
+    """Whether a PAB goal pressed on the panel reaches the Pirate Server:
+    ``connected`` True / False, None without a panel in this manager."""
+    if connected is None:
+        return Report(OK, 'no panel in this manager (panel:=false)', [('connected', '-')])
+    if connected:
+        return Report(OK, 'connected to the Pirate Server', [('connected', True)])
+    return Report(WARN, 'not connected to the Pirate Server yet: a PAB pressed now is refused (press again)',
+                  [('connected', False)])
+
+
 def command_writers(rogues, owner):
     """Who writes the command topics: only ``owner`` may (issue 14.7).
 

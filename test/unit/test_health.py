@@ -53,3 +53,10 @@ def test_small_states_name_the_silent_boards():
     assert health.small_states(False, '', float('inf'), 9).level == health.ERROR
     stale = health.small_states(True, 'board 22 silent', 0.4, 9)
     assert stale.level == health.ERROR and 'board 22 silent' in stale.message
+
+
+def test_panel_goals_warn_until_the_panel_reaches_the_server():
+    assert health.panel_goals(False).level == health.WARN
+    assert 'refused' in health.panel_goals(False).message
+    assert health.panel_goals(True) == health.Report(health.OK, 'connected to the Pirate Server', [('connected', True)])
+    assert health.panel_goals(None).level == health.OK and 'no panel' in health.panel_goals(None).message

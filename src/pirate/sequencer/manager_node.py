@@ -42,11 +42,6 @@ from pirate.sequencer.server import ABORTED, PREEMPTED, SUCCEEDED, Feedback, Pir
 from pirate.srv import ServerStatus, ServerStatusResponse
 
 SHUTDOWN_FLUSH_S = 0.3
-#: s (ROS time) the panel's client waits for its goal topics to reach the
-#: Pirate Server before it says the goal cannot be sent: a goal published
-#: before they connect is dropped by actionlib without a word (CI: a panel
-#: press 30 ms after the manager started was "sent" and never ran).
-SERVER_CONNECT_S = 2.0
 #: Where the manager keeps what the last goal left unfinished (PirateServer.unfinished_data).
 UNFINISHED_PARAM = '~unfinished'
 #: Where it keeps how the last goal that ran ended (PirateServer.ended_data).
@@ -62,6 +57,14 @@ class PabClient(object):
     whose callback holds its own goal handle: a SimpleActionClient logs a
     spurious error when the fast server's status beats ``send_goal``.
     ``on_result(success, message, refused)`` hears how each goal ended.
+
+    A goal published before the client's action topics reach the server is
+    dropped by actionlib without a word (CI: a panel press 30 ms after the
+    manager started was "sent" and never ran), so :meth:`connect` waits for
+    them once, off the press path, and until then a press is refused at once
+    with the reason. Waiting in the press (2 s of ROS time, stop 29) was
+    half a wall second at sim rate x2 on a busy CI machine: refused, the
+    scenario's goal never came (panel_clamp_cancel, stop 31).
     """
 
     def __init__(self, server, pipe_diameter):
@@ -69,15 +72,22 @@ class PabClient(object):
         self._pipe_diameter = pipe_diameter
         self._client = actionlib.ActionClient(names.PIRATE_ACTION, PirateAction)
         self._handle = None     # keeps the goal's handle alive (actionlib tracks it weakly)
+        self.connected = threading.Event()
         self.on_result = lambda success, message, refused: None
+
+    def connect(self):
+        """Block until the action topics reach the Pirate Server (or shutdown); then goals are sent."""
+        if self._client.wait_for_server():
+            self.connected.set()
+            rospy.loginfo('panel: connected to the Pirate Server: PAB goals from the panel are sent')
 
     def send_goal(self, goal):
         """Send a :data:`pirate.panel.config.Goal`; (False, reason) when the server would refuse it."""
         if self._server.active:
             return False, 'a PAB is running (%s)' % self._server.active
-        if not self._client.wait_for_server(rospy.Duration(SERVER_CONNECT_S)):
-            return False, ('the panel is not connected to the Pirate Server yet (its action topics did not connect '
-                           'within %.0f s): nothing was sent; press again' % SERVER_CONNECT_S)
+        if not self.connected.is_set():
+            return False, ('the panel is not connected to the Pirate Server yet (its action topics are still '
+                           'connecting): nothing was sent; press again')
         self._handle = self._client.send_goal(
             PirateGoal(name=goal.name, pipe_diameter=self._pipe_diameter, distance=goal.distance,
                        speed=goal.speed, option=goal.option), transition_cb=self._transition)
@@ -137,6 +147,7 @@ class PirateManager(object):
         rospy.Service(names.SERVER_STATUS_SERVICE, ServerStatus, self._status)
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state, queue_size=5)
         self._writers = OneWriter(rospy.get_name())
+        self._panel_client = None       # the panel's PabClient, when this manager has a panel
         self._diagnostics = self._diagnose()
         for topic, kind in ((names.SETPOINT_TOPIC, SetpointArray), (names.CONTROL_TOPIC, ControlArray),
                             (names.LIMITS_TOPIC, LimitArray)):
@@ -146,6 +157,8 @@ class PirateManager(object):
         self._reconfigure = self._tunables()
         threading.Thread(target=self._worker, name='pab_worker', daemon=True).start()
         self._action.start()
+        if self._panel_client is not None:
+            threading.Thread(target=self._panel_client.connect, name='panel_connect', daemon=True).start()
         rospy.loginfo('pirate_manager ready: guards for %s mm; nothing moves until Play or a PAB goal',
                       ', '.join(str(d) for d in book.diameters()))
 
@@ -153,7 +166,7 @@ class PirateManager(object):
         if not rospy.get_param('~panel', True):
             return None
         from pirate.panel.mapper_ros import MapperRos
-        client = PabClient(self.server, self.server.pipe_diameter)
+        client = self._panel_client = PabClient(self.server, self.server.pipe_diameter)
         panel = MapperRos(self.setpoint, self.control, self.limit, client, publish_arrays=False)
         client.on_result = panel.mapper.pab_result
         return panel
@@ -174,6 +187,8 @@ class PirateManager(object):
             self.feed.since_last_state(), self.feed.feedback_timeout)))
         updater.add('command writers', lambda stat: health.fill(stat, health.command_writers(
             self._writers.rogues(time.monotonic()), self._writers.owner)))
+        updater.add('panel goals', lambda stat: health.fill(stat, health.panel_goals(
+            None if self._panel_client is None else self._panel_client.connected.is_set())))
         rospy.Timer(rospy.Duration(1.0), lambda _event: updater.update())
         return updater
 
