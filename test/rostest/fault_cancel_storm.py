@@ -18,7 +18,7 @@ from pirate import names
 from pirate.msg import MidiInput
 from pirate.srv import ServerStatus
 
-from ready import wait_robot_connected, wait_until
+from ready import wait_panel_goals_connected, wait_robot_connected, wait_until
 
 REWIND, PLAY, STOP, TRACK_RIGHT = 43, 41, 42, 59
 STORM = 'uninitialized ServerGoalHandle'
@@ -35,6 +35,7 @@ class CancelStormTest(unittest.TestCase):
         midi = rospy.Publisher(names.MIDI_INPUT_TOPIC, MidiInput, queue_size=100)
         wait_until(lambda: cancel.get_num_connections() > 0 and midi.get_num_connections() > 0, 'subscribers')
         wait_robot_connected()
+        wait_panel_goals_connected()
         status = rospy.ServiceProxy(names.SERVER_STATUS_SERVICE, ServerStatus)
 
         def press(channel):

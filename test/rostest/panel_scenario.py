@@ -43,11 +43,10 @@ import rostest
 
 import ready
 from actionlib_msgs.msg import GoalStatusArray
-from diagnostic_msgs.msg import DiagnosticArray
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import String
 
-from pirate import health, names
+from pirate import names
 from pirate.robot import tables
 from pirate.msg import (MidiInput, MidiOutput, PirateAction, PirateActionResult, PirateGoal, RobotState,
                         SetpointArray)
@@ -75,8 +74,6 @@ class PanelScenario(unittest.TestCase):
                      rospy.Subscriber(names.PIRATE_ACTION + '/result', PirateActionResult, self._on_result),
                      rospy.Subscriber(names.SETPOINT_TOPIC, SetpointArray, self._on_setpoints)]
         rospy.Subscriber('/rosout', Log, self._on_log)
-        self.panel_goals_connected = False
-        rospy.Subscriber('/diagnostics', DiagnosticArray, self._on_diagnostics)
         self.pub = rospy.Publisher(names.MIDI_INPUT_TOPIC, MidiInput, queue_size=100)
 
     # --- recorders ---------------------------------------------------------------
@@ -100,12 +97,6 @@ class PanelScenario(unittest.TestCase):
         with self.lock:
             self.statuses.add(msg.status.status)
             self.results.append(msg)
-
-    def _on_diagnostics(self, msg):
-        with self.lock:
-            for status in msg.status:
-                if status.name.endswith('panel goals'):
-                    self.panel_goals_connected = status.message == health.panel_goals(True).message
 
     def _on_operator(self, msg):
         with self.lock:
@@ -241,7 +232,7 @@ class PanelScenario(unittest.TestCase):
         # The panel's PAB goals reach the server only once its action client
         # has connected (before, a press is refused: CI, stop 31); the
         # manager says so in its 1 Hz diagnostics.
-        self._until(lambda: self.panel_goals_connected, 30, 'the panel to reach the Pirate Server (diagnostics)')
+        ready.wait_panel_goals_connected()
         for number, step in enumerate(steps):
             (kind, arg), = step.items()
             rospy.loginfo('panel scenario step %d: %s %s', number, kind, arg)

@@ -25,3 +25,18 @@ def wait_until(condition, what, deadline_s=60.0):
         if time.monotonic() > end:
             raise AssertionError('timed out waiting for %s' % what)
         time.sleep(0.02)
+
+
+def wait_panel_goals_connected(timeout_s=30.0):
+    """Block until pirate_manager's diagnostics say the panel's PAB goals reach
+    the Pirate Server (a press before is refused, 'press again'); AssertionError if not."""
+    from diagnostic_msgs.msg import DiagnosticArray
+    from pirate import health
+    connected = health.panel_goals(True).message
+    heard = []
+    ear = rospy.Subscriber('/diagnostics', DiagnosticArray, lambda msg: heard.extend(
+        s.message for s in msg.status if s.name.endswith('panel goals')))
+    try:
+        wait_until(lambda: connected in heard, 'the panel to reach the Pirate Server (diagnostics)', timeout_s)
+    finally:
+        ear.unregister()
