@@ -51,14 +51,15 @@ class Progress(object):
 
     def check(self, view):
         """True to go on; PabFailed when the odometry stood still too long."""
-        if abs(self.travel(view) - self.mark_mm) >= self.min_mm:
-            self.mark_mm, self.mark_s = self.travel(view), view.stamp
+        travelled = self.travel(view)
+        if abs(travelled - self.mark_mm) >= self.min_mm:
+            self.mark_mm, self.mark_s = travelled, view.stamp
             self.allowed_s = self.window_s
         elif view.stamp - self.mark_s > self.allowed_s:
             raise PabFailed('no odometry progress for %.1f s with the wheels commanded '
                             '(odometry %.1f mm, %s: boards silent, or the wheels stalled, '
                             'e.g. the robot against an end cap or an obstacle)'
-                            % (view.stamp - self.mark_s, self.travel(view), self.travel.text))
+                            % (view.stamp - self.mark_s, travelled, self.travel.text))
         return True
 
 
