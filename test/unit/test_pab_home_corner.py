@@ -116,7 +116,7 @@ def test_home_tried_with_the_middle_swinging_names_the_corner_if_its_unclamp_fai
     view = RobotView(dict(zip(JOINTS, angles)), roll, 0.0, 0.0, 1.0, {})
     guards = BOOK.for_diameter(110)
     ctx = types.SimpleNamespace(feed=types.SimpleNamespace(latest=lambda: view), guards=guards)
-    hint = home._corner_hint(ctx)
+    hint = home._corner_hint(ctx, None)
     assert 'half round a corner toward the LEFT (Bend III 1.31 rad: the middle swinging round)' in hint
     assert 're-send it toward the LEFT to finish it, then Home' in hint
 
@@ -125,7 +125,7 @@ def test_no_corner_hint_in_a_straight_pipe():
     angles, roll = STRAIGHT_PIPE['clamped straight 110']
     view = RobotView(dict(zip(JOINTS, angles)), roll, 0.0, 0.0, 1.0, {})
     ctx = types.SimpleNamespace(feed=types.SimpleNamespace(latest=lambda: view), guards=BOOK.for_diameter(110))
-    assert home._corner_hint(ctx) == ''
+    assert home._corner_hint(ctx, None) == ''
 
 
 #: 110 mm T-joint LEFT cancelled 35 robot s in, swinging the middle round
@@ -213,3 +213,26 @@ def test_home_after_steering_with_the_front_dropped_into_the_opening_is_refused(
 def test_after_another_goal_the_same_pose_is_along_and_not_refused():
     reason, facts = steering_home(19, after_state='clamping rear')
     assert reason is None and facts.along
+
+
+def steering_hint(cancel_s, mm, after_state=junction.STEERING_FRONT, moved_mm=0.0):
+    """What Home's unclamp says when it times out in the pose STEERING[mm, cancel_s]."""
+    angles, roll, odometry_mm = STEERING[mm, cancel_s]
+    view = RobotView(dict(zip(JOINTS, angles)), roll, odometry_mm + moved_mm, 0.0, 1.0, {})
+    ctx = types.SimpleNamespace(feed=types.SimpleNamespace(latest=lambda: view), guards=BOOK.for_diameter(mm))
+    return home._corner_hint(ctx, Ended('Taking Mitre bend', after_state, odometry_mm, 'preempted'))
+
+
+def test_an_unclamp_blocked_after_a_turn_stopped_steering_in_names_the_way_on():
+    """No bend is round the corner yet (Bend II below steered_rad), so only
+    the last goal tells: the unclamp can block above home_after_steering
+    (stop 31: slow at 0.66-0.73 rad in 110 mm), and the re-sent turn finishes."""
+    hint = steering_hint(36.5, 110)
+    assert 'the last goal, Taking Mitre bend, stopped steering the front into an opening toward the RIGHT' in hint
+    assert '(front tilt 0.90 rad)' in hint
+    assert 're-send it toward the RIGHT to finish it, then Home' in hint
+
+
+@pytest.mark.parametrize('after_state, moved_mm', [('clamping rear', 0.0), (junction.STEERING_FRONT, 50.0)])
+def test_no_steering_hint_after_another_goal_or_once_moved(after_state, moved_mm):
+    assert steering_hint(36.5, 110, after_state, moved_mm) == ''

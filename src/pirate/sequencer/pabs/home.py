@@ -104,8 +104,7 @@ class Home(Pab):
                      lifted=angles['front_tilt'] > float(ctx.guards.row(LOWER_ROW)['above']),
                      along=angles['bend_i'] <= _bend_i_max(ctx) and not steered)
 
-    @staticmethod
-    def _unclamp(ctx, part):
+    def _unclamp(self, ctx, part):
         """Open ``part``, then leave its outer bend compliant (torque 0) and
         hold its inner bend where it opened (PWM 0, the worm holds).
 
@@ -119,7 +118,7 @@ class Home(Pab):
         try:
             ctx.prims.unclamp(part)
         except TimedOut as late:
-            raise TimedOut('%s%s' % (late, _corner_hint(ctx))) from late
+            raise TimedOut('%s%s' % (late, _corner_hint(ctx, self.after))) from late
         outer, inner = CLAMP_BENDS[part]
         ctx.prims.move_module(outer, 0)
         ctx.prims.hold(inner)
@@ -145,20 +144,29 @@ class Home(Pab):
                 'the junction; %d motion primitives' % (angles['front_tilt'], why, count))
 
 
-def _corner_hint(ctx):
+def _corner_hint(ctx, after):
     """For an unclamp that did not open: where in a corner the robot senses it
-    is, if anywhere short of the rear coming round ('' otherwise). With Bend
-    III between the turn row's resume_middle_rad and swing_rad Home is only
-    refused after a turn that stopped there (:meth:`Home.check`); from a
-    manager restarted since, or the robot moved, it is tried."""
+    is, if anywhere short of the rear coming round, or that the last goal
+    (``after``) stopped steering into an opening here ('' otherwise). With
+    Bend III between the turn row's resume_middle_rad and swing_rad Home is
+    only refused after a turn that stopped there (:meth:`Home.check`); from a
+    manager restarted since, or the robot moved, it is tried. After a turn
+    stopped steering in, Home is refused only with the front module down in
+    the opening (``home_after_steering``); above it the unclamp may still
+    block, and re-sending the turn is the way on (twin, notes/issue-10.md
+    stop 31: every re-sent turn finished)."""
     view = ctx.feed.latest()
     sensed = corner.facts(ctx.guards, view)
     sensed.pop('rear_round', None)
-    if not any(sensed.values()):
-        return ''
     side = corner.side_turned(ctx.guards, view)
-    return ('; the bends say half round a corner toward the %s (%s): if a turn was cancelled there, re-send it '
-            'toward the %s to finish it, then Home' % (side, corner.text(view, sensed), side))
+    if any(sensed.values()):
+        said = 'the bends say half round a corner toward the %s (%s)' % (side, corner.text(view, sensed))
+    elif half_round.stopped_steering(view, ctx.guards, after):
+        said = ('the last goal, %s, stopped steering the front into an opening toward the %s here (front tilt '
+                '%.2f rad)' % (after.pab, side, view.angles['front_tilt']))
+    else:
+        return ''
+    return '; %s: if a turn was cancelled there, re-send it toward the %s to finish it, then Home' % (said, side)
 
 
 def _bend_i_max(ctx):
