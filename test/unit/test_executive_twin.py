@@ -17,7 +17,9 @@ bench/mission_sweep runs the same over many start rolls with sensor noise.
 - a route through two mitre bends and a T-joint (inspection_network_90)
   ends at its target, re-anchored at each junction;
 - a route from a main into the branch of a T-joint entered through its run
-  (tee_run_branch_left_90 with points) ends at its target in the branch.
+  (tee_run_branch_left_90 with points) ends at its target in the branch;
+- a route straight past a T-joint open to a side (tee_run_right_90 with
+  points) drives past it clamped straight, every module past it.
 """
 import math
 import re
@@ -274,3 +276,30 @@ def test_a_pause_half_round_a_bend_resumes_the_turn_where_it_is(pause_in):
     assert outcome.status == 'succeeded', log
     assert [g.step.pab for g in robot.goals[goals_at_pause:]] == ['MITRE_BEND', 'DRIVE', 'HOME'], log
     assert abs(truth_m - pipe_map.points['after_bend']) < 0.05, (truth_m, log)
+
+
+def test_a_route_straight_past_a_t_joint_open_to_a_side_drives_past_it_clamped_straight():
+    """tee_run_right_90 (entered through its run, the branch open to the
+    right) with a pit at the start and a target 500 mm past the T-joint:
+    Clamp Straight, one Drive past the T-joint (no junction PAB: upright no
+    wheel meets the side hole, junctions.driven_past), a Drive on, Home.
+    Judged by ground truth: every module past the T-joint's far edge, the
+    estimate (nothing re-anchored) within 50 mm of the truth."""
+    with open(network.world_path('tee_run_right_90')) as stream:
+        layout = yaml.safe_load(stream)
+    tee_exit_mm = 800 + 90
+    pipe_map = network.build(dict(layout, points=[{'name': 'pit', 'at_mm': layout['start']['at_mm']},
+                                                  {'name': 'target', 'at_mm': tee_exit_mm + 500}]))
+    plan = planner.plan(pipe_map, ['pit', 'target'], SETTINGS, MAX_DRIVE_MM, None, True)
+    planner.check_runnable(plan)
+    with SimHarness(speedup=TEE_SPEEDUP, world='tee_run_right_90', orientation=UPRIGHT + 0.1, seed=13) as h:
+        robot, run = executive(plan, h, pipe_map.points['pit'])
+        outcome = finished(run, *run_in_thread(run))
+        truth = h.ground_truth()
+    assert outcome.status == 'succeeded', outcome.log
+    assert [(g.step.pab, g.step.option) for g in robot.goals] == [
+        ('CLAMP_STRAIGHT', None), ('DRIVE', None), ('DRIVE', None), ('HOME', None)]
+    behind = [body for body, pose in truth['poses'].items() if pose[0][0] <= tee_exit_mm / 1000.0]
+    assert not behind, behind
+    assert run.localiser.fixes == []
+    assert abs(run.localiser.along_m - robot_along_m(pipe_map, truth)) < 0.05

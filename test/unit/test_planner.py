@@ -100,12 +100,44 @@ def tee_run(side):
                   {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 2500})
 
 
-@pytest.mark.parametrize('side, clamp', [('up', ('CLAMP_STRAIGHT', None)), ('right', ('CLAMP_SIDEWAYS', 'RIGHT')),
-                                         ('left', ('CLAMP_SIDEWAYS', 'LEFT'))])
-def test_straight_through_a_tee_clamps_with_the_front_v_facing_its_open_side(side, clamp):
+def test_straight_through_a_tee_open_upward_clamps_with_the_front_v_facing_it():
     """The PAB senses the T-joint only with the V's apex toward the hole
-    (notes/issue-10.md): upright for a hole above, on the side of a side hole."""
-    assert pabs(run(tee_run(side), 'a', 'b'))[:3] == [clamp, ('DRIVE', None), ('T_JOINT', 'STRAIGHT')]
+    (notes/issue-10.md): upright below a hole above."""
+    assert pabs(run(tee_run('up'), 'a', 'b'))[:3] == [('CLAMP_STRAIGHT', None), ('DRIVE', None),
+                                                       ('T_JOINT', 'STRAIGHT')]
+
+
+@pytest.mark.parametrize('side', ['left', 'right'])
+def test_straight_past_a_tee_open_to_a_side_drives_clamped_straight(side):
+    """Upright, no wheel meets a side hole: one Drive past it, until the rear
+    end is approach_mm past its far edge, then on to the target; no junction
+    PAB, so nothing is anchored there (junctions.driven_past)."""
+    route_plan = run(tee_run(side), 'a', 'b')
+    assert pabs(route_plan) == [('CLAMP_STRAIGHT', None), ('DRIVE', None), ('DRIVE', None), ('HOME', None)]
+    past, on = route_plan.steps[1:3]
+    exit_mm = 1500 + 90
+    assert past.distance_mm == pytest.approx(exit_mm + REAR + APPROACH - 200)
+    assert 'past tee_1 (open %s' % side in past.note and past.junction is None
+    assert on.distance_mm == pytest.approx(2500 - exit_mm - REAR - APPROACH)
+    planner.check_runnable(route_plan)
+
+
+@pytest.mark.parametrize('side', ['left', 'right'])
+def test_driving_past_a_side_tee_stops_at_the_target_if_it_comes_first(side):
+    net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': side},
+                 {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 1700})
+    route_plan = run(net, 'a', 'b')
+    assert pabs(route_plan) == [('CLAMP_STRAIGHT', None), ('DRIVE', None), ('HOME', None)]
+    assert route_plan.steps[1].distance_mm == pytest.approx(1500.0)
+
+
+def test_driving_back_past_a_side_tee_clears_it_with_the_front_end():
+    """Either way: on the way back the front end trails (no junction PAB, so
+    nothing is taken rear first)."""
+    route_plan = run(tee_run('right'), 'b', 'a')
+    assert pabs(route_plan) == [('CLAMP_STRAIGHT', None), ('DRIVE', None), ('DRIVE', None), ('HOME', None)]
+    assert route_plan.steps[1].end_m * 1000 == pytest.approx(1500 - FRONT - APPROACH)
+    planner.check_runnable(route_plan)
 
 
 def test_straight_through_a_tee_open_downward_is_refused_no_clamp_faces_it():
@@ -114,28 +146,31 @@ def test_straight_through_a_tee_open_downward_is_refused_no_clamp_faces_it():
 
 
 @pytest.mark.parametrize('diameter', [90, 110])
-def test_the_clamp_the_planner_asks_for_a_tee_straight_is_one_the_pab_starts_from(diameter):
-    """T_JOINT STRAIGHT declares it starts clamped straight or sideways
-    (pabs/junction.py), sideways only where the diameter's guards take it
-    (neither does yet: measured below the goal in the twin): through a tee
-    open upward the route runs; open to a side it is refused before
+def test_a_junction_step_the_pab_does_not_start_from_the_held_clamp_is_refused(diameter):
+    """check_runnable reads the PAB's own declaration (pabs/junction.py) and,
+    for straight on lying on a side, its guards' verdict (neither diameter
+    takes it yet): a T_JOINT STRAIGHT step held sideways is refused before
     anything moves, naming the clamp the route holds there."""
-    def tee(side):
-        return world([{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': side},
-                      {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 2500}, diameter=diameter)
-    planner.check_runnable(run(tee('up'), 'a', 'b'))
+    net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': 'up'},
+                 {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 2500}, diameter=diameter)
+    route_plan = run(net, 'a', 'b')
+    planner.check_runnable(route_plan)
+    sideways = route_plan._replace(steps=[step._replace(holds=required_clamp('tee', 'straight', 'right'))
+                                          if step.pab == 'T_JOINT' else step for step in route_plan.steps])
     with pytest.raises(planner.PlanError, match=r"step 3 \(T_JOINT STRAIGHT, tee_1\): the route holds clamp "
-                                                r"sideways RIGHT there \(the front V facing right\), but T_JOINT "
+                                                r"sideways RIGHT there \(the front V facing up\), but T_JOINT "
                                                 r"STRAIGHT starts from clamp straight only"):
-        planner.check_runnable(run(tee('right'), 'a', 'b'))
+        planner.check_runnable(sideways)
 
 
-@pytest.mark.parametrize('side', ['left', 'right'])
-def test_where_the_guards_take_straight_on_lying_on_a_side_the_route_runs(side, monkeypatch):
+def test_where_the_guards_take_straight_on_lying_on_a_side_a_sideways_step_runs(monkeypatch):
     """The planner reads the PAB's own declaration and its guards' verdict."""
     from pirate.sequencer.pabs import junction
     monkeypatch.setattr(junction, 'straight_sideways_problem', lambda guards, speed: None)
-    planner.check_runnable(run(tee_run(side), 'a', 'b'))
+    route_plan = run(tee_run('up'), 'a', 'b')
+    sideways = route_plan._replace(steps=[step._replace(holds=required_clamp('tee', 'straight', 'left'))
+                                          if step.pab == 'T_JOINT' else step for step in route_plan.steps])
+    planner.check_runnable(sideways)
 
 
 def test_entering_a_tee_through_its_branch_turns_toward_its_side():
@@ -178,27 +213,28 @@ def test_a_drive_longer_than_one_goal_may_go_is_split_evenly():
     assert sum(drives) == pytest.approx(11000.0)
 
 
-@pytest.mark.parametrize('side, reclamp', [('up', []), ('left', ['CLAMP_SIDEWAYS'])])
-def test_two_junctions_in_a_row_reclamp_between_them_only_when_needed(side, reclamp):
+@pytest.mark.parametrize('side, then', [('up', ['DRIVE', 'T_JOINT', 'DRIVE']), ('left', ['DRIVE', 'DRIVE'])])
+def test_two_junctions_in_a_row_reclamp_between_them_only_when_needed(side, then):
+    """After a bend up (clamped straight) a T-joint open upward, or one open
+    to a side driven past, needs no other clamp."""
     net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'mitre', 'turn': 'up'},
                  {'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': side},
                  {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 4000})
-    assert [p for p, _ in pabs(run(net, 'a', 'b'))] == [
-        'CLAMP_STRAIGHT', 'DRIVE', 'MITRE_BEND'] + reclamp + ['DRIVE', 'T_JOINT', 'DRIVE', 'HOME']
+    assert [p for p, _ in pabs(run(net, 'a', 'b'))] == ['CLAMP_STRAIGHT', 'DRIVE', 'MITRE_BEND'] + then + ['HOME']
 
 
-@pytest.mark.parametrize('second, reclamp', [({'type': 'mitre', 'turn': 'left'}, []),
-                                              ({'type': 'tee', 'enter': 'run', 'side': 'up'}, ['CLAMP_STRAIGHT'])])
-def test_after_a_turn_the_robot_still_lies_on_its_side(second, reclamp):
+@pytest.mark.parametrize('second, then', [
+    ({'type': 'mitre', 'turn': 'left'}, ['DRIVE', 'MITRE_BEND', 'DRIVE']),
+    ({'type': 'tee', 'enter': 'run', 'side': 'up'}, ['CLAMP_STRAIGHT', 'DRIVE', 'T_JOINT', 'DRIVE']),
+    ({'type': 'tee', 'enter': 'run', 'side': 'left'}, ['CLAMP_STRAIGHT', 'DRIVE', 'DRIVE'])])
+def test_after_a_turn_the_robot_still_lies_on_its_side(second, then):
     """A turn ends clamped sideways (the junction PAB's straightening is Clamp
     Sideways): a second turn the same way needs no clamp, a T-joint open
-    upward needs the straight clamp first."""
+    upward, or one open to a side driven past, the straight clamp first."""
     net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'mitre', 'turn': 'left'},
                  {'type': 'straight', 'length_mm': 1500}, second,
                  {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 4000})
-    assert [p for p, _ in pabs(run(net, 'a', 'b'))] == [
-        'CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND'] + reclamp + ['DRIVE', second['type'] == 'tee' and 'T_JOINT'
-                                                           or 'MITRE_BEND', 'DRIVE', 'HOME']
+    assert [p for p, _ in pabs(run(net, 'a', 'b'))] == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND'] + then + ['HOME']
 
 
 def test_junctions_are_named_in_path_order():
@@ -272,13 +308,16 @@ def test_plan_mission_prints_the_shipped_inspection_route(capsys):
     out = capsys.readouterr().out.splitlines()
     assert out[0].startswith('plan on inspection_90: launch_pit -> target -> launch_pit')
     taken = [line.split()[1] for line in out[1:] if 'MITRE_BEND' in line or 'T_JOINT' in line]
-    assert taken == ['MITRE_BEND', 'T_JOINT', 'MITRE_BEND'] * 2
+    assert taken == ['MITRE_BEND', 'MITRE_BEND'] * 2          # its T-joint, open to the right, is driven past
+    assert sum(line.split()[1] == 'DRIVE' and 'past tee_1 (open right' in line for line in out) == 2
     assert out[-1].split()[1] == 'HOME'
 
 
 @pytest.mark.parametrize('world, target, warning', [
-    # its T-joint opens to the right: T_JOINT STRAIGHT lying on a side is not taken in 90 mm yet
-    ('inspection_90', 'past_tee', 'step 6 (T_JOINT STRAIGHT, tee_1): the route holds clamp sideways RIGHT there'),
+    # its last bend turns down: not taken yet
+    ('inspection_90', 'target', 'step 7 (MITRE_BEND DOWN, mitre_2): the Pirate Server cannot run MITRE_BEND DOWN yet'),
+    # its T-joint opens to the right: driven past clamped straight
+    ('inspection_90', 'past_tee', None),
     ('inspection_network_90', 'target', None),
 ])
 def test_plan_mission_says_when_the_server_cannot_run_the_plan_yet(world, target, warning, capsys):

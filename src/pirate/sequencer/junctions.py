@@ -23,7 +23,8 @@ sideways (left or right)." Two rules behind it:
 Directions are relative to the pipe before the junction, as the world
 format (pirate.world.network) and the Pirate.action options give them.
 
-The planner asks :func:`required_clamp`; whether the junction PAB starts
+The planner asks :func:`required_clamp`, and drives past a T-joint open to
+a side clamped straight (:func:`driven_past`); whether the junction PAB starts
 from that clamp is the PAB's own declaration (its ``JUNCTIONS`` table),
 read by :func:`pab_start_clamps`, so a route the PAB cannot start is
 refused before the robot moves (pirate.supervisory.planner.check_runnable).
@@ -57,6 +58,25 @@ def required_clamp(kind, direction, open_side=None):
                              'V\'s apex toward it, so the junction PAB cannot sense it' % open_side)
         return FACING_OPEN_SIDE[open_side]
     raise ValueError('a %s cannot be taken %r' % (kind, direction))
+
+
+#: Open sides of a T-joint gone straight through that the robot drives past
+#: clamped straight instead of taking it with the junction PAB (:func:`driven_past`).
+DRIVEN_PAST_OPEN = ('left', 'right')
+
+
+def driven_past(kind, direction, open_side):
+    """True for a T-joint gone straight through whose open side is left or
+    right: clamped straight (upright) the V's wheels press the pipe's top
+    and bottom, which a side branch of the same diameter leaves whole (it
+    cuts the run's wall down to those two lines only), so a Drive crosses it
+    and no part has to open. The junction PAB would have to lie on that side
+    to sense the hole, which it does not take yet
+    (pabs.junction.SIDEWAYS_STRAIGHT_WHY). Nothing is sensed on the way, so
+    no junction anchors the odometry there. Twin: bench/tee_drive_past. A
+    tee open downward is not driven past lying on a side: the drive stalled
+    over the hole (twin, 90 mm, both sides; notes/issue-10.md stop 32)."""
+    return kind == 'tee' and direction == 'straight' and open_side in DRIVEN_PAST_OPEN
 
 
 def is_turn(direction):

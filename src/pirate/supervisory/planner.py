@@ -12,7 +12,10 @@ plan can be printed and checked (``rosrun pirate plan_mission MAP FROM TO``):
   at the mission's speed; every other PAB at its own (speed 0: a junction
   PAB searches and crosses at the speed it was measured at);
 - take each mitre bend / T-joint in the direction the route goes; backwards
-  (rear first) on the way back, with a negative search distance;
+  (rear first) on the way back, with a negative search distance; straight
+  on past a T-joint open to the left or right, drive past it clamped
+  straight instead (:func:`pirate.sequencer.junctions.driven_past`), either
+  way;
 - drive on to the target; home at the end.
 
 Positions are metres along the map's path (pirate.world.network), of the
@@ -26,7 +29,7 @@ import collections
 
 from pirate.sequencer import goals
 from pirate.sequencer.guards import GuardBook, load_files
-from pirate.sequencer.junctions import STRAIGHT_CLAMP, is_turn, label, pab_start_clamps, required_clamp
+from pirate.sequencer.junctions import STRAIGHT_CLAMP, driven_past, is_turn, label, pab_start_clamps, required_clamp
 from pirate.sequencer.pabs.junction import REAR_FIRST_WHY
 from pirate.world.network import turns_at_corner
 
@@ -119,7 +122,10 @@ class _Planner(object):
         sign = 1 if b > a else -1
         crossed = [j for j in self.junctions if min(a, b) < j.entry_m and j.exit_m < max(a, b)]
         for junction in (crossed if sign > 0 else reversed(crossed)):
-            self._take(junction, sign, name_a)
+            if driven_past(junction.kind, junction.direction, junction.open_side):
+                self._drive_past(junction, sign, b)
+            else:
+                self._take(junction, sign, name_a)
         if self.clamp is None:
             self._clamp(STRAIGHT_CLAMP, 'before driving to %s' % name_b)
         to_go_mm = (b - self.at) * 1000
@@ -152,6 +158,19 @@ class _Planner(object):
         # The junction PAB ends clamped as it started: a turn lying on the same side (Clamp Sideways
         # straightens toward it), straight on through a T-joint upright (pirate.sequencer.pabs.junction).
         self.at, self.clamp = after_m, clamp
+
+    def _drive_past(self, junction, sign, to_m):
+        """Clamp straight, then drive until the trailing end is ``approach_mm``
+        past ``junction`` (or to ``to_m``, the leg's end, if that comes first):
+        a Drive, so no junction is met or anchored there."""
+        self._clamp(STRAIGHT_CLAMP, 'to drive past %s (open %s)' % (junction.name, junction.open_side))
+        robot = self.settings['robot']
+        trail_mm = robot['rear_mm'] if sign > 0 else robot['front_mm']
+        clear_m = (junction.exit_m if sign > 0 else junction.entry_m) + sign * (
+            trail_mm + self.settings['approach_mm']) / 1000.0
+        past_m = min(clear_m, to_m) if sign > 0 else max(clear_m, to_m)
+        self._drive((past_m - self.at) * 1000, 'past %s (open %s: clamped straight no wheel meets its opening)'
+                    % (junction.name, junction.open_side))
 
     def _turn_end_mm(self, junction):
         """How far past the junction a turn leaves the middle, mm: the robot's
