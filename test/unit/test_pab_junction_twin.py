@@ -107,6 +107,7 @@ def test_no_junction_within_the_distance_aborts_with_junction_missing():
         assert reason is None and outcome.status == 'aborted'
         assert outcome.junction_missing and math.isnan(outcome.junction_odometry)
         assert 'no junction within 150 mm' in outcome.message
+        assert 'the front V, its apex toward the top, kept its wall' in outcome.message     # where it looked
         sent = h.wires['setpoint'].sent[-1][1]
         assert all(sent[i] == 0 for i in SAFE_INDICES.values()), sent        # the safe hold
         assert h.server.status() == 'Idle Clamped'                            # it never let go

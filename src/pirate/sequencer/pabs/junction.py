@@ -242,6 +242,8 @@ SENSED_STATES = tuple(t.target for t in MACHINE.transitions if t.guard is FOUND)
 UPRIGHT = math.pi / 2
 #: Clamp orientations (rad, Fig 4.7) by name.
 ORIENTATIONS = {'straight': UPRIGHT, 'sideways LEFT': math.pi, 'sideways RIGHT': 0.0}
+#: Where the front V's apex (the side it senses a T-joint's hole on) faces, by clamp orientation.
+APEX_TOWARD = {UPRIGHT: 'top', math.pi: 'left', 0.0: 'right'}
 #: goal code -> (kind, what it is called, server state (Fig 4.2),
 #: {option: (direction, clamps allowed before it)}).
 #: A turn needs the clamp of pirate.sequencer.junctions.required_clamp; straight
@@ -563,8 +565,10 @@ class TakeJunction(Pab):
             'front V loses its wall, or odometry +%.0f mm' % distance, motions.time_bound(ctx, distance, speed))
         if self.sensor.sensed is None:
             self.junction_missing = True
-            raise JunctionMissing('no junction within %.0f mm (odometry %.0f mm from the start; the front V '
-                                  'kept its wall)' % (distance, view.odometry - self.start_mm))
+            raise JunctionMissing('no junction within %.0f mm (odometry %.0f mm from the start; the front V, its '
+                                  'apex toward the %s, kept its wall: a T-joint open another way is not sensed from '
+                                  'this clamp, e.g. upright one open to a side, which a Drive passes)'
+                                  % (distance, view.odometry - self.start_mm, APEX_TOWARD[self._target()]))
         self.junction_odometry = self.sensor.sensed.odometry - self.start_mm
 
     def _steer_front(self, ctx):
