@@ -19,7 +19,10 @@ bench/mission_sweep runs the same over many start rolls with sensor noise.
 - a route from a main into the branch of a T-joint entered through its run
   (tee_run_branch_left_90 with points) ends at its target in the branch;
 - a route straight past a T-joint open to a side (tee_run_right_90 with
-  points) drives past it clamped straight, every module past it.
+  points) drives past it clamped straight, every module past it;
+- inspection_90 to past_tee: a mitre bend after a 1.5 m drive clamped
+  sideways (which rolls the robot out of the straight band), then the
+  T-joint open to the right driven past, without a retry.
 """
 import math
 import re
@@ -303,3 +306,26 @@ def test_a_route_straight_past_a_t_joint_open_to_a_side_drives_past_it_clamped_s
     assert not behind, behind
     assert run.localiser.fixes == []
     assert abs(run.localiser.along_m - robot_along_m(pipe_map, truth)) < 0.05
+
+
+def test_a_route_through_a_bend_after_a_long_drive_and_past_a_side_tee_needs_no_retry():
+    """inspection_90, launch_pit -> past_tee: the 1485 mm drive clamped
+    sideways LEFT rolls the twin's robot to about 3.04 rad, out of the
+    straight band; Take mitre bend re-adjusts its clamp itself (before, it
+    was rejected and the executive spent its retry re-clamping), then the
+    T-joint open to the right is driven past clamped straight. The goals
+    are the plan's, one each; every module ends past the T-joint."""
+    pipe_map = network.load(network.world_path('inspection_90'))
+    plan = planner.plan(pipe_map, ['launch_pit', 'past_tee'], SETTINGS, MAX_DRIVE_MM, None, True)
+    planner.check_runnable(plan)
+    tee = planner.junctions(pipe_map)[1]
+    with SimHarness(speedup=TEE_SPEEDUP, world='inspection_90', orientation=UPRIGHT + 0.1, seed=17) as h:
+        robot, run = executive(plan, h, pipe_map.points['launch_pit'])
+        outcome = finished(run, *run_in_thread(run))
+        truth = h.ground_truth()
+    assert outcome.status == 'succeeded', outcome.log
+    assert [(g.step.pab, g.step.option) for g in robot.goals] == [(s.pab, s.option) for s in plan.steps]
+    assert [f.junction for f in run.localiser.fixes] == ['mitre_1']
+    assert robot_along_m(pipe_map, truth) - pipe_map.points['past_tee'] < 0.05
+    rear_along_m = robot_along_m(pipe_map, truth) - SETTINGS['robot']['rear_mm'] / 1000.0
+    assert rear_along_m > tee.exit_m, (rear_along_m, tee)

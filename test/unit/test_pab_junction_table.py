@@ -37,8 +37,10 @@ def past_the_corner(f):
 #: What each state's action guarantees about the facts read right after it.
 POSTCONDITION = {
     # straight on: always; a turn: from its start (what check() always accepted); the resumes below
-    jn.CHANGE_MODES: lambda f: not f.turn or (f.front and f.rear and f.straight and not in_a_corner(f)
+    jn.CHANGE_MODES: lambda f: not f.turn or (f.front and f.rear and (f.straight or f.toward) and not in_a_corner(f)
                                               and not past_the_corner(f)),
+    jn.RE_ADJUSTING: lambda f: f.turn and f.front and f.rear and f.straight and not in_a_corner(f)
+    and not past_the_corner(f),      # Clamp Sideways ended straight, or raised
     jn.SEARCHING: lambda f: f.found and not f.turn,  # else it raised JunctionMissing
     jn.STOPPING: lambda f: f.found and not f.turn,
     jn.LIFTING_FRONT: lambda f: f.turn and not f.found,
@@ -116,6 +118,15 @@ def test_a_turn_steers_the_front_in_brings_the_rear_and_straightens():
                       jn.CLAMPING_FRONT, jn.DRIVING_IN, jn.STRAIGHTENING]
 
 
+def test_a_turn_from_a_clamp_rolled_out_of_straight_re_adjusts_it_first():
+    """Within the nominal band toward the turn: Clamp Sideways' re-adjust, then the turn from its start."""
+    rolled = jn.Facts(found=False, front=True, rear=True, straight=False, turn=True, toward=True)
+    assert jn.MACHINE.next(jn.CHANGE_MODES, rolled) == jn.RE_ADJUSTING
+    assert jn.MACHINE.next(jn.RE_ADJUSTING, rolled._replace(straight=True)) == jn.LIFTING_FRONT
+    with pytest.raises(PabFailed):          # a re-adjust that did not straighten ends the PAB
+        jn.MACHINE.next(jn.RE_ADJUSTING, rolled)
+
+
 # --- refusals ------------------------------------------------------------------
 Goal = collections.namedtuple('Goal', 'name option distance speed pipe_diameter')
 CLAMPED = dict(bend_i=-1.0, bend_ii=0.5, bend_iii=0.5, bend_iv=-1.0, rotation=0.0, front_tilt=0.44)   # 90 mm, twin
@@ -167,6 +178,23 @@ def test_a_turn_is_taken_clamped_sideways_toward_it(name, option, orientation):
                                                          bend_iv=-0.65))
     assert 'starts clamped sideways %s' % codes.OPTION_NAMES[option] in check(name, option, robot=other_side)
     assert 'starts clamped sideways' in check(name, option, robot=view())       # upright
+
+
+@pytest.mark.parametrize('offset, first', [(0.10, jn.RE_ADJUSTING), (-0.10, jn.RE_ADJUSTING), (0.03, jn.LIFTING_FRONT),
+                                           (0.25, None)])
+@pytest.mark.parametrize('option, orientation', [(codes.LEFT, math.pi), (codes.RIGHT, 0.0)])
+def test_a_turn_from_a_clamp_a_drive_rolled_re_adjusts_it_within_the_nominal_band(option, orientation, offset,
+                                                                                     first):
+    """0.10 rad off (a 1.5 m drive in the twin): out of the straight band
+    (+-0.05), within the nominal one (+-0.17), re-adjusted first; 0.25 off,
+    refused with Clamp Sideways first."""
+    robot = view(orientation + offset, angles=dict(CLAMPED, bend_i=-0.65, bend_ii=0.33, bend_iii=0.33, bend_iv=-0.65))
+    assert first_step(codes.MITRE_BEND, option, robot) == first
+    reason = check(codes.MITRE_BEND, option, distance=800.0, robot=robot)
+    if first is None:
+        assert 'Clamp Sideways %s first' % codes.OPTION_NAMES[option] in reason
+    else:
+        assert reason is None
 
 
 @pytest.mark.parametrize('name', [codes.MITRE_BEND, codes.T_JOINT])
