@@ -36,11 +36,11 @@ def past_the_corner(f):
 
 #: What each state's action guarantees about the facts read right after it.
 POSTCONDITION = {
-    # straight on: always; a turn: from its start (what check() always accepted); the resumes below
-    jn.CHANGE_MODES: lambda f: not f.turn or (f.front and f.rear and (f.straight or f.toward) and not in_a_corner(f)
-                                              and not past_the_corner(f)),
-    jn.RE_ADJUSTING: lambda f: f.turn and f.front and f.rear and f.straight and not in_a_corner(f)
-    and not past_the_corner(f),      # Clamp Sideways ended straight, or raised
+    # from its start, straight or within the nominal band (what check() always accepted); the resumes below
+    jn.CHANGE_MODES: lambda f: f.front and f.rear and (f.straight or f.toward) and not in_a_corner(f)
+    and not past_the_corner(f),
+    jn.RE_ADJUSTING: lambda f: f.front and f.rear and f.straight and not in_a_corner(f)
+    and not past_the_corner(f),      # Clamp Straight / Sideways ended straight, or raised
     jn.SEARCHING: lambda f: f.found and not f.turn,  # else it raised JunctionMissing
     jn.STOPPING: lambda f: f.found and not f.turn,
     jn.LIFTING_FRONT: lambda f: f.turn and not f.found,
@@ -118,11 +118,13 @@ def test_a_turn_steers_the_front_in_brings_the_rear_and_straightens():
                       jn.CLAMPING_FRONT, jn.DRIVING_IN, jn.STRAIGHTENING]
 
 
-def test_a_turn_from_a_clamp_rolled_out_of_straight_re_adjusts_it_first():
-    """Within the nominal band toward the turn: Clamp Sideways' re-adjust, then the turn from its start."""
-    rolled = jn.Facts(found=False, front=True, rear=True, straight=False, turn=True, toward=True)
+@pytest.mark.parametrize('turn, then', [(True, jn.LIFTING_FRONT), (False, jn.SEARCHING)])
+def test_a_junction_from_a_clamp_rolled_out_of_straight_re_adjusts_it_first(turn, then):
+    """Within the nominal band of its clamp: Clamp Sideways' / Straight's
+    re-adjust, then the turn or the search from its start."""
+    rolled = jn.Facts(found=False, front=True, rear=True, straight=False, turn=turn, toward=True)
     assert jn.MACHINE.next(jn.CHANGE_MODES, rolled) == jn.RE_ADJUSTING
-    assert jn.MACHINE.next(jn.RE_ADJUSTING, rolled._replace(straight=True)) == jn.LIFTING_FRONT
+    assert jn.MACHINE.next(jn.RE_ADJUSTING, rolled._replace(straight=True)) == then
     with pytest.raises(PabFailed):          # a re-adjust that did not straighten ends the PAB
         jn.MACHINE.next(jn.RE_ADJUSTING, rolled)
 
@@ -251,6 +253,19 @@ UPRIGHT = {90: CLAMPED, 110: dict(CLAMPED, bend_i=-1.3, bend_ii=0.7, bend_iii=0.
 @pytest.mark.parametrize('mm', [90, 110])
 def test_straight_on_through_a_t_joint_clamped_straight_is_accepted(mm):
     assert check(codes.T_JOINT, codes.STRAIGHT, distance=800.0, robot=view(angles=UPRIGHT[mm]), mm=mm) is None
+
+
+@pytest.mark.parametrize('offset, first', [(0.10, jn.RE_ADJUSTING), (-0.10, jn.RE_ADJUSTING), (0.03, jn.SEARCHING),
+                                           (0.25, None)])
+def test_straight_on_from_a_clamp_a_drive_rolled_re_adjusts_it_within_the_nominal_band(offset, first):
+    """Upright 0.10 rad off: out of the straight band, within the nominal
+    one, re-adjusted first; 0.25 off, refused (neither straight nor on a side)."""
+    robot = view(math.pi / 2 + offset)
+    reason = check(codes.T_JOINT, codes.STRAIGHT, distance=800.0, robot=robot)
+    if first is None:
+        assert 'starts clamped straight' in reason
+    else:
+        assert reason is None and first_step(codes.T_JOINT, codes.STRAIGHT, robot) == first
 
 
 SIDEWAYS_LEFT = dict(CLAMPED, bend_i=-0.65, bend_ii=0.33, bend_iii=0.33, bend_iv=-0.65)

@@ -19,6 +19,10 @@ same goal finds no opening and aborts with junction_missing. A turn at a
 goal speed other than the turn row's sets the wheels to it (and to the
 row's pull speed only) and still ends in the new pipe.
 
+Clamped where it lies about 0.1 rad off its clamp's roll (out of the straight
+band, within the nominal one: where a long drive leaves the robot), either
+goal re-adjusts the clamp first and then runs from its start.
+
 Cancelled at a seeded random instant of its corner part (from clamping the
 front at the corner to bringing the rear through) and re-sent, a MITRE_BEND
 LEFT finishes the turn from where the robot is and ends the same way;
@@ -38,6 +42,8 @@ from pirate.sequencer import clamp_state
 from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.pabs import codes
 from pirate.sequencer.pabs import junction as jn
+from pirate.sequencer.pabs.clamp import in_region, region_around
+from pirate.sim import start_poses
 from pirate.sim.harness import SimHarness
 from pirate.world import network
 from test_sequencer_sim import SAFE_INDICES, STRAIGHT, assert_ended, run_bounded
@@ -294,3 +300,50 @@ def test_a_turn_cancelled_half_round_the_corner_and_re_sent_finishes_it():
             assert_ended(reason, outcome, what=what)
         truth = assert_through(h, world, sign, what)
         assert abs(math.remainder(truth['roll'] - roll, 2 * math.pi)) <= 0.05, (what, truth['roll'])
+
+
+def clamped_where_it_lies(h, mm=90):
+    """Both parts clamped fully at the roll the robot lies at (the clamp rows
+    of that roll, the front lifted first), then the safe hold: a clamp a
+    drive has rolled, made with the robot's own primitives."""
+    guards = start_poses.start_primitives(h, mm)
+    roll = h.feed.latest().orientation
+    h.prims.clamp('rear', clamp_state.row_at(guards, 'clamp', roll))
+    h.prims.move_front(clamp_state.row_at(guards, 'move_front', roll))
+    h.prims.clamp('front', clamp_state.row_at(guards, 'clamp', roll))
+    h.prims.safe_hold()
+    return guards
+
+
+#: (world, goal, option, the clamp's roll rad, the release's offset from it rad, the first primitive of the
+#: junction's own steps). Released 0.12 rad off on its side, the robot clamped there 0.09 off (twin; released
+#: 0.06 below pi it rolled on to 0.19 off while clamping).
+ROLLED = [('tee_run_up_90', codes.T_JOINT, codes.STRAIGHT, math.pi / 2, 0.11, CROSSING[0]),
+          ('bend_left_90', codes.MITRE_BEND, codes.LEFT, math.pi, 0.12, TURN[0])]
+
+
+@pytest.mark.parametrize('world, name, option, target, offset, first', ROLLED)
+def test_a_junction_from_a_clamp_rolled_out_of_its_straight_band_re_adjusts_it_first(world, name, option, target,
+                                                                                    offset, first):
+    with SimHarness(speedup=TURN_SPEEDUP, world=world, orientation=target + offset) as h:
+        robot_wait(h, 1.0)
+        guards = clamped_where_it_lies(h)
+        view = h.feed.latest()
+        assert clamp_state.sensed(guards, view) == (clamp_state.FULL, clamp_state.FULL)
+        assert not in_region(view.orientation, region_around(guards, 'straight', target)), view.orientation
+        assert in_region(view.orientation, region_around(guards, 'nominal', target)), view.orientation
+        done = len(h.prims.executed)
+        reason, outcome = run_bounded(h, h.goal(name, 90, option=option, distance=800.0), 120.0)
+        assert_ended(reason, outcome)
+        ran = h.prims.executed[done:]
+        assert first in ran, ran
+        assert any(step.startswith('rotate') for step in ran[:ran.index(first)]), ran     # the re-adjust first
+        robot_wait(h, 2.0)
+        truth = h.ground_truth()
+        assert abs(math.remainder(truth['roll'] - target, 2 * math.pi)) <= 0.07, truth['roll']
+        assert APEX_WHEELS <= set(truth['wheel_contacts'])
+        if name == codes.T_JOINT:
+            tee = network.load(network.world_path(world)).pieces[1]
+            assert truth['poses']['bend_iv_module'][0][0] > tee.entry.origin[0] + tee.diameter
+        else:
+            assert all(truth['poses'][body][0][1] > 0.045 for body in JOINT_BODIES), truth['poses']

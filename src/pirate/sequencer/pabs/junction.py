@@ -33,7 +33,7 @@ own frame: clamped sideways toward the turn, the new pipe lies on the tilt-posit
 the V's plane, which is horizontal (gravity does not load the steering).
 A clamp toward the turn that a drive rolled out of its straight region
 (still within the nominal one) is re-adjusted first, as Clamp Sideways
-does (:data:`RE_ADJUST`).
+does (:data:`RE_ADJUST`; straight on the same, from the clamp it holds).
 Lift the front module toward the turn, open the front V, level the front
 part on the side in 110 mm (the rotation:
 :func:`~pirate.sequencer.pabs.turn_motions.level_front`; not when resumed),
@@ -125,7 +125,7 @@ BRINGING_REAR = 'bringing the rear through'
 #: a turn stopped in one leaves the robot where only the turn can go on.
 CORNER_STATES = (CLAMPING_AT_CORNER, SWINGING_MIDDLE)
 DRIVING_IN = 'driving into the new pipe'
-RE_ADJUSTING = 're-adjusting the clamp toward the turn'
+RE_ADJUSTING = 're-adjusting the clamp'
 
 #: found: the junction was sensed; front / rear: the part is clamped
 #: (full, as the robot senses it: angles and spring); straight: the rear's
@@ -178,14 +178,18 @@ def _past_the_corner(f):
 START = Guard('turn AND front clamped AND rear clamped AND straight AND NOT in a corner AND NOT past the corner',
               lambda f: f.turn and f.front and f.rear and f.straight and not _in_a_corner(f)
               and not _past_the_corner(f))
-#: A turn from a clamp toward it that has rolled out of its straight region but
-#: not out of the nominal one: the clamp re-adjusted first (Clamp Sideways from
-#: its nominal region), then the turn from its start. A drive rolls the clamped
-#: robot: twin, 1485 mm clamped sideways LEFT at 100 mm/s, 3.15 -> 3.03-3.04 rad
-#: before every run's mitre bend (bench/mission_sweep --world inspection_90).
-RE_ADJUST = Guard('turn AND front clamped AND rear clamped AND NOT straight AND toward AND NOT in a corner '
+#: Straight on from its start: clamped in the straight region of the clamp it holds (check() accepts no other).
+ON_START = Guard('NOT turn AND straight', lambda f: not f.turn and f.straight)
+#: A junction from a clamp that has rolled out of its straight region but not
+#: out of the nominal one (toward): the clamp re-adjusted first (Clamp
+#: Straight / Sideways from their nominal region), then the junction from its
+#: start. A drive rolls the clamped robot: twin, 1485 mm clamped sideways
+#: LEFT at 100 mm/s, 3.15 -> 3.03-3.04 rad before every run's mitre bend
+#: (bench/mission_sweep --world inspection_90); 930 mm upright up to 0.07 rad
+#: (bench/tee_drive_past).
+RE_ADJUST = Guard('front clamped AND rear clamped AND NOT straight AND toward AND NOT in a corner '
                   'AND NOT past the corner',
-                  lambda f: f.turn and f.front and f.rear and not f.straight and f.toward and not _in_a_corner(f)
+                  lambda f: f.front and f.rear and not f.straight and f.toward and not _in_a_corner(f)
                   and not _past_the_corner(f))
 #: Resuming a turn cancelled on the way (re-sent, same direction): the step
 #: that continues it from what the robot senses. Each needs the roll toward
@@ -217,9 +221,10 @@ RESUME_DRIVING_IN = Guard('turn AND toward AND driving_in AND NOT driven_in AND 
 RESUME_STRAIGHTENING = Guard('turn AND toward AND driven_in', lambda f: f.turn and f.toward and f.driven_in)
 
 MACHINE = StateMachine(CHANGE_MODES, (
-    Transition(CHANGE_MODES, SEARCHING, ON),
+    Transition(CHANGE_MODES, SEARCHING, ON_START),
     Transition(CHANGE_MODES, LIFTING_FRONT, START),
     Transition(CHANGE_MODES, RE_ADJUSTING, RE_ADJUST),
+    Transition(RE_ADJUSTING, SEARCHING, ON_START),
     Transition(RE_ADJUSTING, LIFTING_FRONT, START),
     Transition(CHANGE_MODES, STEERING_FRONT, RESUME_STEERING),
     Transition(CHANGE_MODES, CLAMPING_AT_CORNER, RESUME_AT_CORNER),
@@ -474,18 +479,24 @@ class TakeJunction(Pab):
 
     def _target(self, view=None, guards=None):
         """The roll (rad) of the clamp this goal starts in: the side of a
-        turn; straight on, the allowed clamp whose straight region held the
-        robot's roll the first time a ``view`` was read (the goal's start;
-        the clamp it ends in), else the first allowed one."""
+        turn; straight on, the allowed clamp whose straight (else nominal)
+        region held the robot's roll the first time a ``view`` was read (the
+        goal's start; the clamp it ends in), else the first allowed one."""
         if self.target_rad is None and view is not None:
             held = self._held(view, guards)
             self.target_rad = held[0] if held else None
         return ORIENTATIONS[self.clamps[0]] if self.target_rad is None else self.target_rad
 
     def _held(self, view, guards):
-        """Orientations (rad) of the allowed clamps whose straight region holds the robot's roll."""
-        return [ORIENTATIONS[c] for c in self.clamps
-                if in_region(view.orientation, region_around(guards, 'straight', ORIENTATIONS[c]))]
+        """Orientations (rad) of the allowed clamps whose straight region holds
+        the robot's roll, else of those whose nominal region does (a clamp a
+        drive rolled, which the table re-adjusts first)."""
+        for region in ('straight', 'nominal'):
+            held = [ORIENTATIONS[c] for c in self.clamps
+                    if in_region(view.orientation, region_around(guards, region, ORIENTATIONS[c]))]
+            if held:
+                return held
+        return []
 
     @property
     def turning(self):
