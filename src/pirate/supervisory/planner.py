@@ -169,7 +169,7 @@ class _Planner(object):
         clear_m = (junction.exit_m if sign > 0 else junction.entry_m) + sign * (
             trail_mm + self.settings['approach_mm']) / 1000.0
         past_m = min(clear_m, to_m) if sign > 0 else max(clear_m, to_m)
-        self._drive((past_m - self.at) * 1000, 'past %s (open %s: clamped straight no wheel meets its opening)'
+        self._drive((past_m - self.at) * 1000, 'past %s (open %s: clamped straight, no wheel meets its opening)'
                     % (junction.name, junction.open_side))
 
     def _turn_end_mm(self, junction):
