@@ -300,6 +300,7 @@ def test_straight_on_starts_from_the_clamp_it_holds_and_ends_in_it(orientation, 
 def test_straight_on_lying_on_a_side_is_refused_with_the_measured_reason(orientation, mm):
     reason = check(codes.T_JOINT, codes.STRAIGHT, robot=view(orientation, angles=SIDEWAYS[mm]), mm=mm)
     assert 'not taken in a %d mm pipe: in the twin' % mm in reason
+    assert 'Clamp Straight and Drive instead' in reason                  # the way past (junctions.driven_past)
     assert check(codes.T_JOINT, codes.STRAIGHT, robot=view(angles=UPRIGHT[mm]), mm=mm) is None
 
 

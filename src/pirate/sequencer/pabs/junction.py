@@ -305,7 +305,8 @@ def straight_sideways_problem(guards, speed):
     ``speed`` mm/s in ``guards``' diameter, or None."""
     low = guards.row('junction').get('straight_sideways_speed_min')
     if low is None:
-        return ('straight on lying on a side is not taken in a %d mm pipe: %s'
+        return ('straight on lying on a side is not taken in a %d mm pipe: %s; past a T-joint open to a side, '
+                'Clamp Straight and Drive instead (upright no wheel meets its hole: bench/tee_drive_past)'
                 % (guards.pipe_diameter, SIDEWAYS_STRAIGHT_WHY.get(guards.pipe_diameter, 'not measured')))
     if speed < float(low):
         return ('straight on lying on a side needs at least %g mm/s (config/guards_%d.yaml junction '
