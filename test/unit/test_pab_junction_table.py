@@ -245,6 +245,7 @@ def test_a_speed_the_wheels_cannot_drive_is_refused(speed):
 def test_the_robot_must_start_clamped(robot, needle):
     reason = check(codes.T_JOINT, codes.STRAIGHT, robot=robot)
     assert 'starts clamped straight' in reason and needle in reason
+    assert reason.endswith('; Clamp Straight first'), reason            # the way on
 
 
 UPRIGHT = {90: CLAMPED, 110: dict(CLAMPED, bend_i=-1.3, bend_ii=0.7, bend_iii=0.7, bend_iv=-1.3)}

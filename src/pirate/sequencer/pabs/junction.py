@@ -437,10 +437,12 @@ class TakeJunction(Pab):
                 return None
             return self._turn_refusal(view, guards, facts, corner)
         sensed = clamp_state.sensed(guards, view)
-        if sensed != (clamp_state.FULL, clamp_state.FULL) or not self._held(view, guards) or corner:
+        if corner:
             return self._start_text(view, guards) + (
                 '; it is half round a corner toward the %s (%s): re-send that turn to finish it'
-                % (corner_sensing.side_turned(guards, view), corner) if corner else '')
+                % (corner_sensing.side_turned(guards, view), corner))
+        if sensed != (clamp_state.FULL, clamp_state.FULL) or not self._held(view, guards):
+            return '%s; Clamp Straight first' % self._start_text(view, guards)
         return None
 
     def _start_text(self, view, guards):
