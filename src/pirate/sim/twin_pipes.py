@@ -125,7 +125,23 @@ class WallBuilder(object):
         self.tube(start, run_axes, radius, run_spans)
         branch_axes = _frame_along(branch_axis, run_axes[0])
         self.tube(centre, branch_axes, radius,
-                  lambda r: [(radius * abs(_dot(r, run_axes[0])), branch_end)])
+                  lambda r: [(self._clear_of_run(radius, _dot(r, run_axes[0])), branch_end)])
+
+    def _clear_of_run(self, radius, along_run):
+        """Where a branch wall box must start (m from the run's axis along the
+        branch) so that no part of it lies inside the run: ``along_run`` is
+        its radial direction's component along the run's axis. The wall
+        meets the run at radius * |along_run| at the box's middle line, but
+        a flat box is ``half_width`` wide, and toward one of its long edges
+        it meets the run further out (by up to 5 mm at 45 deg in 90 mm): cut
+        at the middle, that edge stood inside the run as a step at the
+        hole's rim, square to a wheel rolling over it (twin: lying on its
+        side the front V's apex wheel stalled on it 3 mm into the hole of a
+        T-joint open to that side; notes/issue-10.md, stop 32)."""
+        half_width = radius * math.tan(math.pi / self.segments) + self.thickness / 2
+        across = math.sqrt(max(0.0, 1.0 - along_run * along_run))
+        nearest = max(0.0, radius * across - half_width * abs(along_run))
+        return math.sqrt(max(0.0, radius * radius - nearest * nearest))
 
     def _floor(self, world, obstacle):
         index, frame = world.locate(obstacle['at_m'])
