@@ -152,6 +152,41 @@ SIDEWAYS_LEFT = (
 )
 
 
+#: tee_run_right_90 (open to the right), clamped sideways RIGHT after a
+#: release at 30 deg (twin of stop 32, the T-joint's rim cut clear of the
+#: run): T_JOINT STRAIGHT's search, then its stop. The V creeps closed as the
+#: robot rolls toward its side (-0.603 to -0.735 rad over 300 mm, 0.042 rad
+#: within 30 mm at 133-163 mm); the apex wheel (45 deg below the side, where
+#: the robot lies) reaches the hole's rim at 317.3 mm of odometry, and Bend I
+#: closes 0.054 rad within 15 mm there as its spring unloads.
+SIDEWAYS_RIGHT_TEE = (
+    (30.3, 0.0, -0.603, 204.8), (30.4, 0.0, -0.606, 223.9), (30.5, 4.1, -0.606, 230.0),
+    (30.6, 8.8, -0.609, 233.0), (30.7, 13.7, -0.612, 233.0), (30.8, 18.6, -0.615, 234.0),
+    (30.9, 23.6, -0.618, 234.0), (31.0, 28.6, -0.620, 234.0), (31.1, 33.6, -0.623, 234.0),
+    (31.2, 38.6, -0.626, 235.0), (31.3, 43.5, -0.627, 234.0), (31.4, 48.5, -0.630, 235.0),
+    (31.5, 53.5, -0.632, 235.0), (31.6, 58.5, -0.635, 235.0), (31.7, 63.5, -0.637, 235.0),
+    (31.8, 68.4, -0.640, 235.0), (31.9, 73.4, -0.643, 235.0), (32.0, 78.4, -0.644, 234.0),
+    (32.1, 83.4, -0.647, 235.0), (32.2, 88.4, -0.650, 234.0), (32.3, 93.3, -0.653, 234.0),
+    (32.4, 98.3, -0.657, 233.0), (32.5, 103.3, -0.660, 233.0), (32.6, 108.3, -0.663, 233.0),
+    (32.7, 113.3, -0.666, 233.0), (32.8, 118.2, -0.669, 232.0), (32.9, 123.2, -0.672, 232.0),
+    (33.0, 128.2, -0.676, 232.0), (33.1, 133.2, -0.680, 231.0), (33.2, 138.2, -0.684, 231.0),
+    (33.3, 143.0, -0.689, 227.9), (33.4, 147.8, -0.696, 223.9), (33.5, 152.7, -0.704, 222.9),
+    (33.6, 157.7, -0.712, 222.9), (33.7, 162.6, -0.718, 223.9), (33.8, 167.6, -0.721, 227.9),
+    (33.9, 172.6, -0.724, 233.0), (34.0, 177.6, -0.726, 234.0), (34.1, 182.6, -0.727, 235.0),
+    (34.2, 187.5, -0.729, 236.0), (34.3, 192.5, -0.730, 237.0), (34.4, 197.5, -0.730, 239.0),
+    (34.5, 202.5, -0.732, 239.0), (34.6, 207.5, -0.733, 238.0), (34.7, 212.4, -0.735, 237.0),
+    (34.8, 217.4, -0.735, 238.0), (34.9, 222.4, -0.735, 239.0), (35.0, 227.4, -0.736, 240.1),
+    (35.1, 232.4, -0.738, 239.0), (35.2, 237.3, -0.738, 240.1), (35.3, 242.3, -0.739, 237.0),
+    (35.4, 247.3, -0.741, 237.0), (35.5, 252.3, -0.741, 240.1), (35.6, 257.3, -0.741, 240.1),
+    (35.7, 262.2, -0.742, 239.0), (35.8, 267.2, -0.744, 238.0), (35.9, 272.2, -0.744, 239.0),
+    (36.0, 277.2, -0.744, 241.1), (36.1, 282.2, -0.744, 240.1), (36.2, 287.1, -0.746, 239.0),
+    (36.3, 292.1, -0.747, 238.0), (36.4, 297.1, -0.746, 241.1), (36.5, 302.0, -0.744, 246.1),
+    (36.6, 307.1, -0.746, 244.1), (36.7, 312.2, -0.753, 226.9), (36.8, 317.3, -0.769, 207.8),
+    (36.9, 322.6, -0.799, 177.5), (37.0, 327.5, -0.833, 161.4), (37.1, 327.8, -0.838, 203.7),
+)
+SIDEWAYS_RIGHT_TEE_RIM_MM = 317.3
+
+
 def views(rows):
     return [RobotView({'bend_i': angle}, 1.571, odometry, 46.0, stamp, {'bend_i': spring})
             for stamp, odometry, angle, spring in rows]
@@ -208,3 +243,29 @@ def test_either_sign_of_a_lost_wall_counts(angle, spring, why):
     sensor = JunctionSensor(GUARDS, start)
     view = views([(0.1, 5.0, angle, spring)])[0]
     assert (why in sensor.why(view)) if why else sensor.why(view) == ''
+
+
+class _Window(object):
+    """``guards`` with the junction row's close_window_mm set to ``window_mm``."""
+
+    def __init__(self, guards, window_mm):
+        self._guards, self._window_mm = guards, window_mm
+
+    def row(self, name):
+        row = self._guards.row(name)
+        return dict(row, close_window_mm=self._window_mm) if name == 'junction' else row
+
+    def __getattr__(self, name):
+        return getattr(self._guards, name)
+
+
+def test_on_a_side_the_hole_is_sensed_at_its_rim_and_not_where_the_v_creeps():
+    """close_window_mm 15 (config/guards_90.yaml): sensed within a Mega cycle
+    or two of the apex wheel reaching the rim; with the former 30 mm the
+    creep at 133-163 mm read as the hole and the robot crossed 150 mm short
+    of the T-joint (bench/pab_junction_sweep, 90 mm open right from 30 deg)."""
+    sensed, _ = first_sensed(SIDEWAYS_RIGHT_TEE)
+    assert sensed is not None and 'closed' in sensed.why
+    assert SIDEWAYS_RIGHT_TEE_RIM_MM <= sensed.odometry <= SIDEWAYS_RIGHT_TEE_RIM_MM + 15.0, sensed
+    early, _ = first_sensed(SIDEWAYS_RIGHT_TEE, _Window(GUARDS, 30.0))
+    assert early is not None and early.odometry < SIDEWAYS_RIGHT_TEE_RIM_MM - 100.0, early
