@@ -106,6 +106,29 @@ def test_t_joint_straight_on_crosses_the_open_side_and_ends_clamped_past_it():
         assert h.server.status() == 'Idle Clamped'
 
 
+@pytest.mark.parametrize('side', sorted(SIDES))
+def test_t_joint_straight_on_lying_toward_its_open_side_crosses_it(side):
+    """90 mm (config/guards_90.yaml straight_sideways_speed_min): clamped
+    sideways toward a T-joint open to that side, the front V senses the hole
+    and each part crosses it open; the robot ends past it on the same side."""
+    option, roll, _ = SIDES[side]
+    world = network.load(network.world_path('tee_run_%s_90' % side))
+    tee = world.pieces[1]
+    with SimHarness(speedup=SPEEDUP, world=world.name, orientation=roll) as h:
+        clamped_sideways(h, option)
+        reason, outcome = run_bounded(h, h.goal(codes.T_JOINT, option=codes.STRAIGHT, speed=50.0, distance=800.0))
+        assert_ended(reason, outcome)
+        # lying on a side the rear crosses pressing lightly (turn_motions.open_to_cross), not unclamped partly
+        assert h.prims.executed[-len(CROSSING) + 1:] == [step for step in CROSSING if step != 'unclamp rear partial']
+        assert 250.0 < outcome.junction_odometry < 400.0 and not outcome.junction_missing
+        robot_wait(h, 2.0)
+        truth = h.ground_truth()
+        assert truth['poses']['bend_iv_module'][0][0] > tee.entry.origin[0] + tee.diameter, truth['poses']
+        assert APEX_WHEELS <= set(truth['wheel_contacts'])
+        assert abs(math.remainder(truth['roll'] - roll, 2 * math.pi)) <= 0.05, truth['roll']
+        assert h.server.status() == 'Idle Clamped'
+
+
 def test_no_junction_within_the_distance_aborts_with_junction_missing():
     with SimHarness(speedup=SPEEDUP, world='straight_90') as h:
         clamped_straight(h)

@@ -290,14 +290,11 @@ NOT_TAKEN = {
 }
 
 #: Why straight on lying on a side has no row in a diameter (config/guards_<mm>.yaml junction
-#: straight_sideways_speed_min absent; notes/issue-10.md, stop 30).
+#: straight_sideways_speed_min absent; notes/issue-10.md, stops 30 and 32).
 SIDEWAYS_STRAIGHT_WHY = {
-    90: 'in the twin it crossed from 10 of 14 approach rolls at 50 mm/s (goal 95 %): the open front part, '
-        "pushed across on its shells, stalled at the hole's far edge, or Bend I's wheel ran into the hole "
-        'unsensed and stalled there (the aborts left the robot in the safe hold; slower searches stalled more)',
     110: 'in the twin lying on a side the front V did not sense the hole reliably: Bend I, settling after the '
-         'clamp, read as a hole 15-19 mm after the start (the robot then crossed short of the T-joint), or its '
-         'wheel ran into the hole unsensed and stalled at the far edge'}
+         'clamp, read as a hole 18-28 mm after the start (the robot then crossed short of the T-joint), or the '
+         "front V's partial unclamp did not open within its 15 s"}
 
 
 def straight_sideways_problem(guards, speed):
