@@ -256,6 +256,17 @@ def test_straight_on_through_a_t_joint_clamped_straight_is_accepted(mm):
     assert check(codes.T_JOINT, codes.STRAIGHT, distance=800.0, robot=view(angles=UPRIGHT[mm]), mm=mm) is None
 
 
+@pytest.mark.parametrize('orientation, mm, clamp', [(math.pi, 90, 'Clamp Sideways LEFT'),
+                                                   (0.0, 90, 'Clamp Sideways RIGHT'), (math.pi, 110, 'Clamp Straight'),
+                                                   (math.pi / 2, 90, 'Clamp Straight')])
+def test_straight_on_refused_partly_clamped_names_the_clamp_to_send_first(orientation, mm, clamp):
+    """The clamp it lies in, where straight on is taken from it (on a side: 90 mm only)."""
+    angles = SIDEWAYS[mm] if orientation != math.pi / 2 else UPRIGHT[mm]
+    partly = view(orientation, angles=dict(angles, bend_iii=0.1, bend_iv=-0.2), efforts=dict(bend_i=241.0))
+    reason = check(codes.T_JOINT, codes.STRAIGHT, robot=partly, mm=mm)
+    assert reason.endswith('; %s first' % clamp), reason
+
+
 @pytest.mark.parametrize('offset, first', [(0.10, jn.RE_ADJUSTING), (-0.10, jn.RE_ADJUSTING), (0.03, jn.SEARCHING),
                                            (0.25, None)])
 def test_straight_on_from_a_clamp_a_drive_rolled_re_adjusts_it_within_the_nominal_band(offset, first):

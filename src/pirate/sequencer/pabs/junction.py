@@ -439,8 +439,19 @@ class TakeJunction(Pab):
                 '; it is half round a corner toward the %s (%s): re-send that turn to finish it'
                 % (corner_sensing.side_turned(guards, view), corner))
         if sensed != (clamp_state.FULL, clamp_state.FULL) or not self._held(view, guards):
-            return '%s; Clamp Straight first' % self._start_text(view, guards)
+            return '%s; %s first' % (self._start_text(view, guards), self._clamp_first(view, guards))
         return None
+
+    def _clamp_first(self, view, guards):
+        """The Clamp PAB to send before straight on: the allowed clamp whose
+        nominal region holds the roll (on a side only where the guards take
+        straight on lying there), else Clamp Straight."""
+        for name in self.clamps:
+            target = ORIENTATIONS[name]
+            if (in_region(view.orientation, region_around(guards, 'nominal', target))
+                    and (target == UPRIGHT or straight_sideways_problem(guards, float('inf')) is None)):
+                return 'Clamp Straight' if target == UPRIGHT else 'Clamp Sideways %s' % name.split()[1]
+        return 'Clamp Straight'
 
     def _start_text(self, view, guards):
         return ('%s %s starts clamped %s (report 4.7.4); the robot is %s at %.2f rad'
