@@ -150,23 +150,32 @@ def test_a_route_through_two_turns_and_a_t_joint_ends_at_its_target():
     assert abs(run.localiser.along_m - truth_m) < 0.05, (run.localiser.along_m, truth_m)
 
 
+#: The one-T-joint worlds' T-joint ends 800 + 90 mm along the path (config/worlds/tee_run_*_90.yaml).
+TEE_EXIT_MM = 800 + 90
+
+
+def past_one_tee(world, seed):
+    """A mission on ``world`` (a one-T-joint world) from its start ('pit') to a
+    target 500 mm past the T-joint: (map, robot, run, outcome, ground truth)."""
+    with open(network.world_path(world)) as stream:
+        layout = yaml.safe_load(stream)
+    pipe_map = network.build(dict(layout, points=[{'name': 'pit', 'at_mm': layout['start']['at_mm']},
+                                                  {'name': 'target', 'at_mm': TEE_EXIT_MM + 500}]))
+    plan = planner.plan(pipe_map, ['pit', 'target'], SETTINGS, MAX_DRIVE_MM, None, True)
+    planner.check_runnable(plan)
+    with SimHarness(speedup=TEE_SPEEDUP, world=world, orientation=UPRIGHT + 0.1, seed=seed) as h:
+        robot, run = executive(plan, h, pipe_map.points['pit'])
+        outcome = finished(run, *run_in_thread(run))
+        return pipe_map, robot, run, outcome, h.ground_truth()
+
+
 def test_a_route_from_the_main_into_a_branch_ends_at_its_target_in_the_branch():
     """tee_run_branch_left_90 (the T-joint entered through its run, left by
     its branch to the left) with a pit and a target 500 mm into the branch:
     Clamp Sideways LEFT, T_JOINT LEFT, the robot's middle really in the
     branch at the end (ground truth) and the estimate, re-anchored where the
     turn ends, within 50 mm of the truth."""
-    with open(network.world_path('tee_run_branch_left_90')) as stream:
-        layout = yaml.safe_load(stream)
-    tee_exit_mm = 800 + 90
-    pipe_map = network.build(dict(layout, points=[{'name': 'pit', 'at_mm': layout['start']['at_mm']},
-                                                  {'name': 'target', 'at_mm': tee_exit_mm + 500}]))
-    plan = planner.plan(pipe_map, ['pit', 'target'], SETTINGS, MAX_DRIVE_MM, None, True)
-    planner.check_runnable(plan)
-    with SimHarness(speedup=TEE_SPEEDUP, world='tee_run_branch_left_90', orientation=UPRIGHT + 0.1, seed=11) as h:
-        robot, run = executive(plan, h, pipe_map.points['pit'])
-        outcome = finished(run, *run_in_thread(run))
-        truth = h.ground_truth()
+    pipe_map, robot, run, outcome, truth = past_one_tee('tee_run_branch_left_90', seed=11)
     assert outcome.status == 'succeeded', outcome.log
     assert [(g.step.pab, g.step.option) for g in robot.goals] == [
         ('CLAMP_SIDEWAYS', 'LEFT'), ('DRIVE', None), ('T_JOINT', 'LEFT'), ('DRIVE', None), ('HOME', None)]
@@ -288,21 +297,11 @@ def test_a_route_straight_past_a_t_joint_open_to_a_side_drives_past_it_clamped_s
     wheel meets the side hole, junctions.driven_past), a Drive on, Home.
     Judged by ground truth: every module past the T-joint's far edge, the
     estimate (nothing re-anchored) within 50 mm of the truth."""
-    with open(network.world_path('tee_run_right_90')) as stream:
-        layout = yaml.safe_load(stream)
-    tee_exit_mm = 800 + 90
-    pipe_map = network.build(dict(layout, points=[{'name': 'pit', 'at_mm': layout['start']['at_mm']},
-                                                  {'name': 'target', 'at_mm': tee_exit_mm + 500}]))
-    plan = planner.plan(pipe_map, ['pit', 'target'], SETTINGS, MAX_DRIVE_MM, None, True)
-    planner.check_runnable(plan)
-    with SimHarness(speedup=TEE_SPEEDUP, world='tee_run_right_90', orientation=UPRIGHT + 0.1, seed=13) as h:
-        robot, run = executive(plan, h, pipe_map.points['pit'])
-        outcome = finished(run, *run_in_thread(run))
-        truth = h.ground_truth()
+    pipe_map, robot, run, outcome, truth = past_one_tee('tee_run_right_90', seed=13)
     assert outcome.status == 'succeeded', outcome.log
     assert [(g.step.pab, g.step.option) for g in robot.goals] == [
         ('CLAMP_STRAIGHT', None), ('DRIVE', None), ('DRIVE', None), ('HOME', None)]
-    behind = [body for body, pose in truth['poses'].items() if pose[0][0] <= tee_exit_mm / 1000.0]
+    behind = [body for body, pose in truth['poses'].items() if pose[0][0] <= TEE_EXIT_MM / 1000.0]
     assert not behind, behind
     assert run.localiser.fixes == []
     assert abs(run.localiser.along_m - robot_along_m(pipe_map, truth)) < 0.05

@@ -22,6 +22,7 @@ REAR = SETTINGS['robot']['rear_mm']
 APPROACH = SETTINGS['approach_mm']
 CLEAR = SETTINGS['clear_mm']
 TURN_END = SETTINGS['turn_end_mm'][90]
+TURN_END_FROM_RUN = SETTINGS['turn_end_from_run_mm'][90]
 SEARCH = SETTINGS['search_mm']
 
 
@@ -67,12 +68,28 @@ def test_mitre_left_clamps_sideways_left_and_stops_the_front_before_it():
 def test_a_turn_in_110_mm_ends_where_the_110_mm_turn_leaves_the_robot():
     """The turn's end is the robot's geometry in that pipe: one figure per diameter."""
     ends = SETTINGS['turn_end_mm']
-    assert ends[110] > ends[90] + 100       # the twin: 577-587 against 385-388 mm
+    assert ends[110] > ends[90] + 100       # the twin: 572-576 against 394-404 mm
     steps = run(world(BEND_LEFT, {'pit': 300, 'target': 3000}, diameter=110), 'pit', 'target').steps
     exit_mm = 2000 + 110
     assert steps[2].pab == 'MITRE_BEND' and steps[2].pipe_diameter == 110
     assert steps[2].end_m * 1000 == pytest.approx(exit_mm + ends[110])
     assert steps[3].distance_mm == pytest.approx(3000 - exit_mm - ends[110])
+
+
+def test_a_t_joint_from_its_run_ends_where_its_own_figure_says_and_a_mitre_where_the_diameters_does():
+    """turn_end_from_run_mm (90 mm: the middle swings round the open run
+    ahead and ends ~45 mm further, twin); 110 mm has none, turn_end_mm serves."""
+    assert TURN_END_FROM_RUN > TURN_END + 30
+    for diameter, end in ((90, TURN_END_FROM_RUN), (110, SETTINGS['turn_end_mm'][110])):
+        net = world([{'type': 'straight', 'length_mm': 1500},
+                     {'type': 'tee', 'enter': 'run', 'side': 'left', 'leave': 'branch'},
+                     {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 2500}, diameter=diameter)
+        tee_step = run(net, 'a', 'b').steps[2]
+        assert tee_step.junction.from_run and tee_step.end_m * 1000 == pytest.approx(1500 + diameter + end)
+    branch = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'branch', 'side': 'left'},
+                    {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 2500})
+    tee_step = run(branch, 'a', 'b').steps[2]
+    assert not tee_step.junction.from_run and tee_step.end_m * 1000 == pytest.approx(1500 + 90 + TURN_END)
 
 
 def test_a_turn_in_a_pipe_without_a_measured_turn_end_is_refused():
@@ -189,8 +206,8 @@ def test_entering_a_tee_through_its_run_and_leaving_by_its_branch_is_a_turn_towa
     assert required_clamp(tee.kind, tee.direction, tee.open_side) == (route_plan.steps[0].pab, side.upper())
     exit_mm = 1500 + 90
     assert route_plan.steps[1].distance_mm == pytest.approx(1500 - FRONT - APPROACH - 200)
-    assert route_plan.steps[2].end_m * 1000 == pytest.approx(exit_mm + TURN_END)
-    assert route_plan.steps[3].distance_mm == pytest.approx(2500 - exit_mm - TURN_END)
+    assert route_plan.steps[2].end_m * 1000 == pytest.approx(exit_mm + TURN_END_FROM_RUN)
+    assert route_plan.steps[3].distance_mm == pytest.approx(2500 - exit_mm - TURN_END_FROM_RUN)
     planner.check_runnable(route_plan)
 
 

@@ -33,8 +33,10 @@ from pirate.sequencer.junctions import STRAIGHT_CLAMP, driven_past, is_turn, lab
 from pirate.sequencer.pabs.junction import REAR_FIRST_WHY
 from pirate.world.network import turns_at_corner
 
-#: One junction of the map, as the route meets it.
-Junction = collections.namedtuple('Junction', 'name kind direction open_side entry_m exit_m diameter_mm')
+#: One junction of the map, as the route meets it. ``from_run``: a T-joint
+#: entered through its run and left by its branch.
+Junction = collections.namedtuple('Junction', 'name kind direction open_side entry_m exit_m diameter_mm from_run',
+                                  defaults=(False,))
 #: One PAB goal of the plan. ``option``: None or LEFT/RIGHT/UP/DOWN/STRAIGHT;
 #: ``distance_mm`` signed (Drive: how far; junction PABs: how far to search);
 #: ``junction``: the :data:`Junction` a junction PAB should meet (else None);
@@ -57,7 +59,8 @@ def junctions(network):
             count[piece.kind] += 1
             direction, open_side = _crossing(piece)
             found.append(Junction('%s_%d' % (piece.kind, count[piece.kind]), piece.kind, direction, open_side,
-                                  along, along + piece.length, round(piece.diameter * 1000)))
+                                  along, along + piece.length, round(piece.diameter * 1000),
+                                  piece.kind == 'tee' and piece.spec['enter'] == 'run' and turns_at_corner(piece)))
         along += piece.length
     return found
 
@@ -174,8 +177,13 @@ class _Planner(object):
 
     def _turn_end_mm(self, junction):
         """How far past the junction a turn leaves the middle, mm: the robot's
-        geometry round the corner, so one figure per pipe diameter."""
+        geometry round the corner, so one figure per pipe diameter (and, where
+        it differs, for a T-joint entered through its run and left by its
+        branch: ``turn_end_from_run_mm``)."""
         ends = self.settings['turn_end_mm']
+        from_run = self.settings.get('turn_end_from_run_mm') or {}
+        if junction.from_run and junction.diameter_mm in from_run:
+            return from_run[junction.diameter_mm]
         if junction.diameter_mm not in ends:
             raise PlanError('%s: no turn end measured for a %d mm pipe (config/supervisory.yaml turn_end_mm has %s)'
                             % (junction.name, junction.diameter_mm, ', '.join(str(d) for d in sorted(ends))))
