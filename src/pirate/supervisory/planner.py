@@ -57,25 +57,25 @@ def junctions(network):
     for piece in network.pieces:
         if piece.kind in ('mitre', 'tee'):
             count[piece.kind] += 1
-            direction, open_side = _crossing(piece)
+            direction, open_side, from_run = _crossing(piece)
             found.append(Junction('%s_%d' % (piece.kind, count[piece.kind]), piece.kind, direction, open_side,
-                                  along, along + piece.length, round(piece.diameter * 1000),
-                                  piece.kind == 'tee' and piece.spec['enter'] == 'run' and turns_at_corner(piece)))
+                                  along, along + piece.length, round(piece.diameter * 1000), from_run))
         along += piece.length
     return found
 
 
 def _crossing(piece):
-    """(direction taken, open side) of a junction on the path: the same both
-    ways in the robot's own frame (it drives back without turning round).
-    A tee the path turns at (entered through its branch, or through its run
-    and left by its branch) is a turn to its side, the way it does not take
-    straight on; through its run it is straight on, open to its side."""
+    """(direction taken, open side, from_run) of a junction on the path: the
+    same both ways in the robot's own frame (it drives back without turning
+    round). A tee the path turns at (entered through its branch, or through
+    its run and left by its branch: from_run) is a turn to its side, the way
+    it does not take straight on; through its run it is straight on, open to
+    its side."""
     if piece.kind == 'mitre':
-        return piece.spec['turn'], None
+        return piece.spec['turn'], None, False
     if turns_at_corner(piece):
-        return piece.spec['side'], 'straight'
-    return 'straight', piece.spec['side']
+        return piece.spec['side'], 'straight', piece.spec['enter'] == 'run'
+    return 'straight', piece.spec['side'], False
 
 
 def plan(network, waypoints, settings, max_drive_mm, speed_mm_s=None, home=True):
