@@ -446,11 +446,11 @@ class TakeJunction(Pab):
         """The Clamp PAB to send before straight on: the allowed clamp whose
         nominal region holds the roll (on a side only where the guards take
         straight on lying there), else Clamp Straight."""
-        for name in self.clamps:
-            target = ORIENTATIONS[name]
-            if (in_region(view.orientation, region_around(guards, 'nominal', target))
-                    and (target == UPRIGHT or straight_sideways_problem(guards, float('inf')) is None)):
-                return 'Clamp Straight' if target == UPRIGHT else 'Clamp Sideways %s' % name.split()[1]
+        for name in self._within(view, guards, 'nominal'):
+            if ORIENTATIONS[name] == UPRIGHT:
+                return 'Clamp Straight'
+            if straight_sideways_problem(guards, float('inf')) is None:
+                return 'Clamp Sideways %s' % name.split()[1]
         return 'Clamp Straight'
 
     def _start_text(self, view, guards):
@@ -502,12 +502,13 @@ class TakeJunction(Pab):
         """Orientations (rad) of the allowed clamps whose straight region holds
         the robot's roll, else of those whose nominal region does (a clamp a
         drive rolled, which the table re-adjusts first)."""
-        for region in ('straight', 'nominal'):
-            held = [ORIENTATIONS[c] for c in self.clamps
-                    if in_region(view.orientation, region_around(guards, region, ORIENTATIONS[c]))]
-            if held:
-                return held
-        return []
+        held = self._within(view, guards, 'straight') or self._within(view, guards, 'nominal')
+        return [ORIENTATIONS[name] for name in held]
+
+    def _within(self, view, guards, region):
+        """Names of the allowed clamps whose ``region`` (Table 5.4) holds the robot's roll."""
+        return [name for name in self.clamps
+                if in_region(view.orientation, region_around(guards, region, ORIENTATIONS[name]))]
 
     @property
     def turning(self):
