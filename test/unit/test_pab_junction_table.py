@@ -22,6 +22,7 @@ from pirate.sequencer.pabs import PABS, codes
 from pirate.sequencer.pabs import junction as jn
 from pirate.sequencer.pabs.base import END, PabFailed
 from pirate.sequencer.server import PabContext
+from fakes import WithoutJunctionKey
 
 BOOK = GuardBook(*load_files())
 ALL_FACTS = [jn.Facts(*values) for values in itertools.product((True, False), repeat=len(jn.Facts._fields))]
@@ -256,15 +257,29 @@ def test_straight_on_through_a_t_joint_clamped_straight_is_accepted(mm):
     assert check(codes.T_JOINT, codes.STRAIGHT, distance=800.0, robot=view(angles=UPRIGHT[mm]), mm=mm) is None
 
 
+SIDEWAYS_ROW = 'straight_sideways_speed_min'
+
+
+def check_without_sideways_row(name, option, robot, mm):
+    goal = Goal(name, option, 0.0, 0.0, mm)
+    """``check`` in a diameter whose guards do not take straight on lying on a side (no row)."""
+    return PABS[name][1].for_goal(goal).check(goal, robot, WithoutJunctionKey(BOOK.for_diameter(mm), SIDEWAYS_ROW))
+
+
 @pytest.mark.parametrize('orientation, mm, clamp', [(math.pi, 90, 'Clamp Sideways LEFT'),
-                                                   (0.0, 90, 'Clamp Sideways RIGHT'), (math.pi, 110, 'Clamp Straight'),
+                                                   (0.0, 90, 'Clamp Sideways RIGHT'),
+                                                   (math.pi, 110, 'Clamp Sideways LEFT'),
+                                                   (0.0, 110, 'Clamp Sideways RIGHT'),
                                                    (math.pi / 2, 90, 'Clamp Straight')])
 def test_straight_on_refused_partly_clamped_names_the_clamp_to_send_first(orientation, mm, clamp):
-    """The clamp it lies in, where straight on is taken from it (on a side: 90 mm only)."""
+    """The clamp it lies in, where straight on is taken from it (on a side: where the guards have the row)."""
     angles = SIDEWAYS[mm] if orientation != math.pi / 2 else UPRIGHT[mm]
     partly = view(orientation, angles=dict(angles, bend_iii=0.1, bend_iv=-0.2), efforts=dict(bend_i=241.0))
     reason = check(codes.T_JOINT, codes.STRAIGHT, robot=partly, mm=mm)
     assert reason.endswith('; %s first' % clamp), reason
+    if clamp != 'Clamp Straight':        # without the row the way on is upright
+        reason = check_without_sideways_row(codes.T_JOINT, codes.STRAIGHT, partly, mm)
+        assert reason.endswith('; Clamp Straight first'), reason
 
 
 @pytest.mark.parametrize('offset, first', [(0.10, jn.RE_ADJUSTING), (-0.10, jn.RE_ADJUSTING), (0.03, jn.SEARCHING),
@@ -284,10 +299,11 @@ SIDEWAYS_LEFT = dict(CLAMPED, bend_i=-0.65, bend_ii=0.33, bend_iii=0.33, bend_iv
 SIDEWAYS = {90: SIDEWAYS_LEFT, 110: dict(CLAMPED, bend_i=-0.9, bend_ii=0.45, bend_iii=0.45, bend_iv=-0.9)}
 
 
-@pytest.mark.parametrize('orientation, mm', [(0.0, 90), (math.pi, 90), (math.pi / 2, 90), (math.pi / 2, 110)])
+@pytest.mark.parametrize('orientation, mm', [(0.0, 90), (math.pi, 90), (math.pi / 2, 90), (0.0, 110), (math.pi, 110),
+                                              (math.pi / 2, 110)])
 def test_straight_on_starts_from_the_clamp_it_holds_and_ends_in_it(orientation, mm):
     """A T-joint open to a side is gone straight through lying toward it
-    (junctions.FACING_OPEN_SIDE): where the guards take it (90 mm), accepted clamped
+    (junctions.FACING_OPEN_SIDE): where the guards take it (90 and 110 mm), accepted clamped
     straight or sideways, and the machine's "straight" is judged around the
     clamp held at the start, the one the crossing ends in (not upright for a
     robot on a side)."""
@@ -300,23 +316,25 @@ def test_straight_on_starts_from_the_clamp_it_holds_and_ends_in_it(orientation, 
     assert pab._target() == orientation
 
 
-@pytest.mark.parametrize('mm', [110])
+@pytest.mark.parametrize('mm', [90, 110])
 @pytest.mark.parametrize('orientation', [0.0, math.pi])
-def test_straight_on_lying_on_a_side_is_refused_with_the_measured_reason(orientation, mm):
-    reason = check(codes.T_JOINT, codes.STRAIGHT, robot=view(orientation, angles=SIDEWAYS[mm]), mm=mm)
-    assert 'not taken in a %d mm pipe: in the twin' % mm in reason
+def test_straight_on_lying_on_a_side_without_its_row_is_refused_naming_the_way_past(orientation, mm):
+    """A diameter whose guards have no straight_sideways_speed_min (not measured) refuses it."""
+    reason = check_without_sideways_row(codes.T_JOINT, codes.STRAIGHT, view(orientation, angles=SIDEWAYS[mm]), mm)
+    assert 'not taken in a %d mm pipe' % mm in reason and 'not measured in the twin' in reason, reason
     assert 'Clamp Straight and Drive instead' in reason                  # the way past (junctions.driven_past)
-    assert check(codes.T_JOINT, codes.STRAIGHT, robot=view(angles=UPRIGHT[mm]), mm=mm) is None
+    assert check_without_sideways_row(codes.T_JOINT, codes.STRAIGHT, view(angles=UPRIGHT[mm]), mm) is None
 
 
+@pytest.mark.parametrize('mm', [90, 110])
 @pytest.mark.parametrize('orientation', [0.0, math.pi])
-def test_straight_on_lying_on_a_side_where_taken_is_refused_slower_than_its_row(orientation):
-    """90 mm takes it from 50 mm/s (config/guards_90.yaml straight_sideways_speed_min)."""
-    robot = view(orientation, angles=SIDEWAYS[90])
-    assert 'needs at least 50 mm/s' in check(codes.T_JOINT, codes.STRAIGHT, speed=35.0, robot=robot)
-    assert check(codes.T_JOINT, codes.STRAIGHT, speed=50.0, robot=robot) is None
-    assert check(codes.T_JOINT, codes.STRAIGHT, speed=0.0, robot=robot) is None       # the row's search speed, 50
-    assert check(codes.T_JOINT, codes.STRAIGHT, speed=25.0, robot=view(angles=UPRIGHT[90])) is None
+def test_straight_on_lying_on_a_side_is_refused_slower_than_its_row(orientation, mm):
+    """90 and 110 mm take it from 50 mm/s (config/guards_<mm>.yaml straight_sideways_speed_min)."""
+    robot = view(orientation, angles=SIDEWAYS[mm])
+    assert 'needs at least 50 mm/s' in check(codes.T_JOINT, codes.STRAIGHT, speed=35.0, robot=robot, mm=mm)
+    assert check(codes.T_JOINT, codes.STRAIGHT, speed=50.0, robot=robot, mm=mm) is None
+    assert check(codes.T_JOINT, codes.STRAIGHT, speed=0.0, robot=robot, mm=mm) is None     # the row's search speed, 50
+    assert check(codes.T_JOINT, codes.STRAIGHT, speed=25.0, robot=view(angles=UPRIGHT[mm]), mm=mm) is None
 
 
 # --- a turn's speed ------------------------------------------------------------

@@ -10,9 +10,11 @@ import yaml
 
 from pirate import paths
 from pirate.sequencer import goals
+from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.junctions import required_clamp
 from pirate.supervisory import planner
 from pirate.world import network
+from fakes import BookWithoutJunctionKey
 
 with open(os.path.join(paths.CONFIG_DIR, 'supervisory.yaml')) as _f:
     SETTINGS = yaml.safe_load(_f)
@@ -162,13 +164,15 @@ def test_straight_through_a_tee_open_downward_is_refused_no_clamp_faces_it():
         run(tee_run('down'), 'a', 'b')
 
 
-@pytest.mark.parametrize('diameter, taken', [(90, True), (110, False)])
+@pytest.mark.parametrize('diameter', [90, 110])
+@pytest.mark.parametrize('taken', [True, False], ids=['guards with the row', 'guards without it'])
 def test_a_junction_step_the_pab_does_not_start_from_the_held_clamp_is_refused(diameter, taken):
     """check_runnable reads the PAB's own declaration (pabs/junction.py) and,
-    for straight on lying on a side, its guards' verdict (90 mm takes it,
-    110 mm not): a T_JOINT STRAIGHT step held sideways runs in 90 mm and is
-    refused in 110 mm before anything moves, naming the clamp the route
-    holds there. (The planner itself drives past a T-joint open to a side.)"""
+    for straight on lying on a side, its guards' verdict (taken where the
+    junction row has straight_sideways_speed_min: 90 and 110 mm): a T_JOINT
+    STRAIGHT step held sideways runs where the guards take it and is refused
+    before anything moves where they do not, naming the clamp the route holds
+    there. (The planner itself drives past a T-joint open to a side.)"""
     net = world([{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': 'up'},
                  {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 2500}, diameter=diameter)
     route_plan = run(net, 'a', 'b')
@@ -178,10 +182,12 @@ def test_a_junction_step_the_pab_does_not_start_from_the_held_clamp_is_refused(d
     if taken:
         planner.check_runnable(sideways)
         return
+    book = BookWithoutJunctionKey(GuardBook(*load_files()), 'straight_sideways_speed_min')
+    planner.check_runnable(route_plan, book=book)
     with pytest.raises(planner.PlanError, match=r"step 3 \(T_JOINT STRAIGHT, tee_1\): the route holds clamp "
                                                 r"sideways RIGHT there \(the front V facing up\), but T_JOINT "
                                                 r"STRAIGHT starts from clamp straight only"):
-        planner.check_runnable(sideways)
+        planner.check_runnable(sideways, book=book)
 
 
 def test_entering_a_tee_through_its_branch_turns_toward_its_side():

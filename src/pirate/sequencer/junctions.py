@@ -71,9 +71,9 @@ def driven_past(kind, direction, open_side):
     and bottom, which a side branch of the same diameter leaves whole (it
     cuts the run's wall down to those two lines only), so a Drive crosses it
     and no part has to open. The junction PAB would have to lie on that side
-    to sense the hole and cross it one part open at a time, which it takes
-    in 90 mm only (pabs.junction.SIDEWAYS_STRAIGHT_WHY); the Drive is the
-    simpler way in both. Nothing is sensed on the way, so no junction
+    to sense the hole and cross it one part open at a time (taken where the
+    diameter's guards have ``straight_sideways_speed_min``: 90 and 110 mm);
+    the Drive is the simpler way. Nothing is sensed on the way, so no junction
     anchors the odometry there. Twin: bench/tee_drive_past. A
     tee open downward is not driven past lying on a side: the drive stalled
     over the hole (twin, 90 mm, both sides; notes/issue-10.md stop 32)."""

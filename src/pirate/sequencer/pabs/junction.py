@@ -289,22 +289,16 @@ NOT_TAKEN = {
             'robot upside down',
 }
 
-#: Why straight on lying on a side has no row in a diameter (config/guards_<mm>.yaml junction
-#: straight_sideways_speed_min absent; notes/issue-10.md, stops 30 and 32).
-SIDEWAYS_STRAIGHT_WHY = {
-    110: 'in the twin lying on a side the front V did not sense the hole reliably: Bend I, settling after the '
-         'clamp, read as a hole 18-28 mm after the start (the robot then crossed short of the T-joint), or the '
-         "front V's partial unclamp did not open within its 15 s"}
-
 
 def straight_sideways_problem(guards, speed):
     """Why straight on through a T-joint lying on a side cannot run at
     ``speed`` mm/s in ``guards``' diameter, or None."""
     low = guards.row('junction').get('straight_sideways_speed_min')
     if low is None:
-        return ('straight on lying on a side is not taken in a %d mm pipe: %s; past a T-joint open to a side, '
-                'Clamp Straight and Drive instead (upright no wheel meets its hole: bench/tee_drive_past)'
-                % (guards.pipe_diameter, SIDEWAYS_STRAIGHT_WHY.get(guards.pipe_diameter, 'not measured')))
+        return ('straight on lying on a side is not taken in a %d mm pipe: config/guards_%d.yaml junction has no '
+                'straight_sideways_speed_min (not measured in the twin); past a T-joint open to a side, Clamp '
+                'Straight and Drive instead (upright no wheel meets its hole: bench/tee_drive_past)'
+                % (guards.pipe_diameter, guards.pipe_diameter))
     if speed < float(low):
         return ('straight on lying on a side needs at least %g mm/s (config/guards_%d.yaml junction '
                 'straight_sideways_speed_min; in the twin searching slower, the open front part stalled at the hole)'
