@@ -158,7 +158,7 @@ def test_a_direction_the_junction_cannot_have_is_refused(name, option, needle):
 
 
 @pytest.mark.parametrize('mm', [90, 110])
-@pytest.mark.parametrize('option, why', [(codes.UP, 'the rear could not be brought up'),
+@pytest.mark.parametrize('option, why', [(codes.UP, 'one V alone does not hold the robot'),
                                          (codes.DOWN, 'the front tilt stops at -0.1 rad and no clamp holds the '
                                                       'robot upside down')])
 def test_turns_not_built_are_refused_as_not_yet_taken_with_the_reason(option, why, mm):

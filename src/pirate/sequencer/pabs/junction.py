@@ -279,12 +279,13 @@ JUNCTIONS = {
 }
 #: (kind, direction) this PAB takes today; the rest are refused with the reason.
 TAKEN = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right'), ('tee', 'left'), ('tee', 'right')}
-#: Why a direction of a junction kind is not taken (tried in the twin: notes/issue-10.md, "Turns up" / "Turns down").
+#: Why a direction of a junction kind is not taken (tried in the twin: notes/issue-10.md, "Turns up" /
+#: "Turns down"; what a clamp holds in a steep pipe: bench/vertical_hold, stop 33).
 NOT_TAKEN = {
-    'up': 'taking a bend up is not built: in the twin the front part was steered into the pipe above and '
-          'clamped there, but the rear could not be brought up: the robot slid back once the rear let go (the '
-          "front V's wheels hold less than the robot weighs), and in a vertical pipe the roll the clamps steer "
-          'by is not defined',
+    'up': 'taking a bend up is not built: it leaves the front V alone carrying the robot in the pipe above, and '
+          'in the twin one V alone does not hold the robot in a pipe 45 deg steep or more in 90 mm, 60 deg in '
+          '110 mm: it slid back once the rear let go (bench/vertical_hold); and in a vertical pipe the roll the '
+          'clamps steer by is not defined',
     'down': "steering down needs the V's apex down: the front tilt stops at -0.1 rad and no clamp holds the "
             'robot upside down',
 }
