@@ -20,7 +20,7 @@ One of them must hold for ``samples`` consecutive robot states, so one
 noisy sample is not a junction. And a wall is lost only once it was held:
 where the row's ``arm_mm`` is above 0, neither sign counts until the V has
 kept its wall (no sign) over that much odometry. In 110 mm lying on a side
-one search in 66 sensed a "hole" 9 mm after its start (twin, on a loaded
+one search in 78 sensed a "hole" 9 mm after its start (twin, on a loaded
 machine: bench/pab_junction_sweep, notes/issue-10.md stop 33), and the
 robot crossed 300 mm short of the T-joint. Nothing here reads the twin's ground truth:
 only the joint angles, spring efforts and odometry of a
