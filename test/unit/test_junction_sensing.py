@@ -287,15 +287,15 @@ def test_either_sign_of_a_lost_wall_counts(angle, spring, why):
     assert (why in sensor.why(view)) if why else sensor.why(view) == ''
 
 
-class _Row(object):
-    """``guards`` with some of the junction row's values replaced (``values``)."""
+class _Window(object):
+    """``guards`` with the junction row's close_window_mm set to ``window_mm``."""
 
-    def __init__(self, guards, **values):
-        self._guards, self._values = guards, values
+    def __init__(self, guards, window_mm):
+        self._guards, self._window_mm = guards, window_mm
 
     def row(self, name):
         row = self._guards.row(name)
-        return dict(row, **self._values) if name == 'junction' else row
+        return dict(row, close_window_mm=self._window_mm) if name == 'junction' else row
 
     def __getattr__(self, name):
         return getattr(self._guards, name)
@@ -309,7 +309,7 @@ def test_on_a_side_the_hole_is_sensed_at_its_rim_and_not_where_the_v_creeps():
     sensed, _ = first_sensed(SIDEWAYS_RIGHT_TEE)
     assert sensed is not None and 'closed' in sensed.why
     assert SIDEWAYS_RIGHT_TEE_RIM_MM <= sensed.odometry <= SIDEWAYS_RIGHT_TEE_RIM_MM + 15.0, sensed
-    early, _ = first_sensed(SIDEWAYS_RIGHT_TEE, _Row(GUARDS, close_window_mm=30.0))
+    early, _ = first_sensed(SIDEWAYS_RIGHT_TEE, _Window(GUARDS, 30.0))
     assert early is not None and early.odometry < SIDEWAYS_RIGHT_TEE_RIM_MM - 100.0, early
 
 
@@ -321,37 +321,5 @@ def test_in_110_mm_on_a_side_the_hole_is_sensed_at_its_rim_and_not_where_the_v_c
     sensed, _ = first_sensed(SIDEWAYS_LEFT_TEE_110, GUARDS_110)
     assert sensed is not None and 'closed' in sensed.why
     assert SIDEWAYS_LEFT_TEE_110_RIM_MM <= sensed.odometry <= SIDEWAYS_LEFT_TEE_110_RIM_MM + 20.0, sensed
-    early, _ = first_sensed(SIDEWAYS_LEFT_TEE_110, _Row(GUARDS_110, close_window_mm=30.0))
+    early, _ = first_sensed(SIDEWAYS_LEFT_TEE_110, _Window(GUARDS_110, 30.0))
     assert early is not None and early.odometry < 50.0, early
-
-
-def _dipped(rows, until_mm, spring_mnm=150.0):
-    """``rows`` with the spring below the wall's threshold up to ``until_mm``
-    of odometry: a V that has not yet shown it presses its wall."""
-    return tuple((t, o, a, spring_mnm if o <= until_mm else sp) for t, o, a, sp in rows)
-
-
-def test_a_wall_is_lost_only_once_held_in_110_mm():
-    """arm_mm 15 (config/guards_110.yaml): a spring reading low for the first
-    10 mm of a search is not the hole (a search in the sweep sensed one 9 mm
-    after its start and crossed 300 mm short); the hole is still sensed at
-    its rim. With arm_mm 0 the same start reads as the hole."""
-    rows = _dipped(SIDEWAYS_LEFT_TEE_110, until_mm=10.0)
-    sensed, _ = first_sensed(rows, GUARDS_110)
-    assert sensed is not None
-    assert SIDEWAYS_LEFT_TEE_110_RIM_MM <= sensed.odometry <= SIDEWAYS_LEFT_TEE_110_RIM_MM + 20.0, sensed
-    unarmed, _ = first_sensed(rows, _Row(GUARDS_110, arm_mm=0.0))
-    assert unarmed is not None and unarmed.odometry < 10.0 and 'spring' in unarmed.why, unarmed
-
-
-def test_a_v_that_never_holds_its_wall_senses_no_junction():
-    """Never armed: the search ends for want of a junction (junction_missing), not at a made-up one."""
-    assert first_sensed(_dipped(SIDEWAYS_LEFT_TEE_110, until_mm=1000.0), GUARDS_110) == (None, None)
-
-
-def test_in_90_mm_the_first_state_counts():
-    """arm_mm 0 (config/guards_90.yaml): no early sign was seen in 90 mm, so a
-    junction met at the very start of a search is sensed there."""
-    assert float(GUARDS.row('junction')['arm_mm']) == 0.0
-    sensed, _ = first_sensed(_dipped(TEE_UP, until_mm=TEE_UP[2][1]))
-    assert sensed is not None and sensed.odometry == pytest.approx(TEE_UP[0][1])

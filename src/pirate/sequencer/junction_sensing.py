@@ -17,12 +17,7 @@ toward its clamp side and its spring unloads. Either one is the junction:
   compared with where it was a short way back, not at the start.
 
 One of them must hold for ``samples`` consecutive robot states, so one
-noisy sample is not a junction. And a wall is lost only once it was held:
-where the row's ``arm_mm`` is above 0, neither sign counts until the V has
-kept its wall (no sign) over that much odometry. In 110 mm lying on a side
-one search in 78 sensed a "hole" 9 mm after its start (twin, on a loaded
-machine: bench/pab_junction_sweep, notes/issue-10.md stop 33), and the
-robot crossed 300 mm short of the T-joint. Nothing here reads the twin's ground truth:
+noisy sample is not a junction. Nothing here reads the twin's ground truth:
 only the joint angles, spring efforts and odometry of a
 :class:`pirate.state.feed.RobotView`. Pure.
 """
@@ -53,9 +48,6 @@ class JunctionSensor(object):
         self.sign = 1 if guards.pair('clamp', 'front').outer.setpoint > 0 else -1
         self._track = [(start.odometry, start.angles[self.outer])]   # (mm, rad), oldest first
         self._run = []
-        self.arm_mm = float(row['arm_mm'])
-        self._quiet_from = None      # odometry (mm) since which no sign has shown
-        self.armed = self.arm_mm <= 0.0
         self.sensed = None
 
     def why(self, view):
@@ -83,19 +75,8 @@ class JunctionSensor(object):
             return True
         why = self.why(view)
         self._track.append((view.odometry, view.angles[self.outer]))
-        if not self.armed:
-            self._arm(view, why)
-            return False
         self._run = self._run + [(view, why)] if why else []
         if len(self._run) >= self.samples:
             first, _ = self._run[0]
             self.sensed = Sensed(first.odometry, first.stamp, why)
         return self.sensed is not None
-
-    def _arm(self, view, why):
-        """Armed once no sign has shown over ``arm_mm`` of odometry."""
-        if why:
-            self._quiet_from = None
-        elif self._quiet_from is None:
-            self._quiet_from = view.odometry
-        self.armed = self._quiet_from is not None and view.odometry - self._quiet_from >= self.arm_mm
