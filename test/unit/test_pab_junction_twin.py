@@ -51,6 +51,8 @@ from test_sim_twin_sequencer import robot_wait
 
 SPEEDUP = 20.0
 APEX_WHEELS = {23, 26}
+#: rad the robot may settle after a PAB ended (bench/pab_clamp_sweep.straight_within's margin)
+SETTLE_RAD = 0.02
 CROSSING = ['look for the junction', 'stop wheels', 'unclamp front partial', 'drive front across', 'stop wheels',
             'clamp front', 'unclamp rear partial', 'drive rear across', 'stop wheels', 'clamp rear']
 TURN = ['move front turn', 'unclamp front partial', 'steer front', 'clamp front at the corner', 'swing the middle',
@@ -123,14 +125,25 @@ def test_t_joint_straight_on_lying_toward_its_open_side_crosses_it(side, mm):
         goal = h.goal(codes.T_JOINT, pipe_diameter=mm, option=codes.STRAIGHT, speed=50.0, distance=800.0)
         reason, outcome = run_bounded(h, goal)
         assert_ended(reason, outcome)
-        # lying on a side the rear crosses pressing lightly (turn_motions.open_to_cross), not unclamped partly
-        assert h.prims.executed[-len(CROSSING) + 1:] == [step for step in CROSSING if step != 'unclamp rear partial']
+        # lying on a side the rear crosses pressing lightly (turn_motions.open_to_cross), not unclamped partly;
+        # a crossing that leaves the roll off the straight band is straightened after it (the table's
+        # clamping rear -> straightening), as 110 mm did now and then on a loaded machine
+        crossing = [step for step in CROSSING if step != 'unclamp rear partial']
+        executed = h.prims.executed
+        start = len(executed) - 1 - executed[::-1].index(crossing[0])
+        assert executed[start:start + len(crossing)] == crossing, executed
+        assert start + len(crossing) == len(executed) or jn.STRAIGHTENING in {fb.pab_state for fb in h.feedback}, \
+            executed
         assert 250.0 < outcome.junction_odometry < 400.0 and not outcome.junction_missing
         robot_wait(h, 2.0)
         truth = h.ground_truth()
         assert truth['poses']['bend_iv_module'][0][0] > tee.entry.origin[0] + tee.diameter, truth['poses']
         assert APEX_WHEELS <= set(truth['wheel_contacts'])
-        assert abs(math.remainder(truth['roll'] - roll, 2 * math.pi)) <= 0.05, truth['roll']
+        # on the side it lay on, as bench/pab_junction_sweep judges it: Table 5.4's straight band
+        # around the side, give or take SETTLE_RAD for the robot settling after the PAB ended
+        low, high = region_around(GuardBook(*load_files()).for_diameter(mm), 'straight', roll)
+        assert low - SETTLE_RAD <= roll + math.remainder(truth['roll'] - roll, 2 * math.pi) <= high + SETTLE_RAD, \
+            truth['roll']
         assert h.server.status() == 'Idle Clamped'
 
 
