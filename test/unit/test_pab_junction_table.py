@@ -261,8 +261,8 @@ SIDEWAYS_ROW = 'straight_sideways_speed_min'
 
 
 def check_without_sideways_row(name, option, robot, mm):
-    goal = Goal(name, option, 0.0, 0.0, mm)
     """``check`` in a diameter whose guards do not take straight on lying on a side (no row)."""
+    goal = Goal(name, option, 0.0, 0.0, mm)
     return PABS[name][1].for_goal(goal).check(goal, robot, WithoutJunctionKey(BOOK.for_diameter(mm), SIDEWAYS_ROW))
 
 
