@@ -496,7 +496,7 @@ def cancelled(angles, springs, roll):
 def first_step(name, option, robot, mm=90):
     goal = Goal(name, option, 800.0, 0.0, mm)
     guards = BOOK.for_diameter(mm)
-    return jn._first_step(PABS[name][1].for_goal(goal).sensed_facts(guards, robot))
+    return jn.first_step(PABS[name][1].for_goal(goal).sensed_facts(guards, robot))
 
 
 @pytest.mark.parametrize('where', sorted(CANCELLED))
@@ -539,19 +539,19 @@ def test_round_a_corner_with_neither_part_clamped_is_refused_with_where_it_is():
 def test_a_robot_in_a_corner_never_starts_a_turn_from_its_beginning():
     for facts in ALL_FACTS:
         if in_a_corner(facts):
-            assert jn._first_step(facts) != jn.LIFTING_FRONT, facts
+            assert jn.first_step(facts) != jn.LIFTING_FRONT, facts
 
 
 def test_a_turn_never_resumes_with_the_roll_away_from_its_side():
     for facts in ALL_FACTS:
         if facts.turn and not facts.toward and not facts.straight:
-            assert jn._first_step(facts) is None, facts
+            assert jn.first_step(facts) is None, facts
 
 
 def test_a_resumed_step_needs_its_clamped_part():
     """Swinging pushes off the clamped rear, bringing pulls with the clamped front."""
     for facts in ALL_FACTS:
-        step = jn._first_step(facts)
+        step = jn.first_step(facts)
         if step in (jn.STEERING_FRONT, jn.CLAMPING_AT_CORNER, jn.SWINGING_MIDDLE):
             assert facts.rear, facts
         if step == jn.BRINGING_REAR:
@@ -571,7 +571,7 @@ def test_a_turn_remembered_past_the_corner_goes_on_from_where_its_record_says():
     corner_steps = {jn.LIFTING_FRONT, jn.STEERING_FRONT, jn.CLAMPING_AT_CORNER, jn.SWINGING_MIDDLE,
                     jn.BRINGING_REAR}
     for facts in ALL_FACTS:
-        step = jn._first_step(facts)
+        step = jn.first_step(facts)
         if facts.turn and past_the_corner(facts):
             assert step not in corner_steps, facts
         if facts.turn and facts.toward and facts.driven_in:
@@ -595,7 +595,7 @@ def _past_the_corner(record, odometry_mm, mm=90):
     goal = Goal(codes.MITRE_BEND, codes.LEFT, 800.0, 0.0, mm)
     pab = PABS[codes.MITRE_BEND][1].for_goal(goal)
     pab.carry_on(record)
-    return pab.check(goal, robot, BOOK.for_diameter(mm)), jn._first_step(pab.sensed_facts(BOOK.for_diameter(mm), robot))
+    return pab.check(goal, robot, BOOK.for_diameter(mm)), jn.first_step(pab.sensed_facts(BOOK.for_diameter(mm), robot))
 
 
 def test_cancelled_while_driving_in_the_same_turn_re_sent_drives_what_is_left():
@@ -615,7 +615,7 @@ def test_cancelled_while_clamping_the_rear_that_came_through_the_same_turn_re_se
     pab.carry_on(jn.PastCorner('rear_through', 1000.0, 1000.0))
     guards = BOOK.for_diameter(90)
     assert pab.check(goal, robot, guards) is None
-    assert jn._first_step(pab.sensed_facts(guards, robot)) == jn.CLAMPING_REAR
+    assert jn.first_step(pab.sensed_facts(guards, robot)) == jn.CLAMPING_REAR
 
 
 @pytest.mark.parametrize('odometry_mm', [985.0, 1165.5, 40.0])

@@ -3,18 +3,22 @@
 A PAB (report 4.7.4) is a class with a :class:`StateMachine` (states and
 guarded transitions, printable as a table like the report's Table D.1), an
 action per state (motion primitives) and a ``facts`` function that reads the
-robot after each action. :meth:`Pab.run` is the one loop that drives them.
-Pure Python.
+robot after each action. Each guard is an expression over those facts
+(:mod:`pirate.sequencer.pabs.expr`), so the test the machine runs and the
+text the table prints are one. :meth:`Pab.run` is the one loop that drives
+them. Pure Python.
 """
 import collections
 
+from pirate.sequencer.pabs.expr import ALWAYS, fields
+
 END = 'END'
 
-#: A named predicate over a PAB's facts; the name is what the table prints.
-Guard = collections.namedtuple('Guard', 'text test')
+#: One row of a transition table: from ``source`` to ``target`` when ``guard``
+#: (an expression of :mod:`pirate.sequencer.pabs.expr`) holds.
 Transition = collections.namedtuple('Transition', 'source target guard')
 
-ALWAYS = Guard('-', lambda facts: True)
+__all__ = ['ALWAYS', 'END', 'Ended', 'Pab', 'PabFailed', 'StateMachine', 'Transition']
 
 
 #: How the last goal that ran ended: its PAB's name, the PAB state it was in,
@@ -28,14 +32,29 @@ class PabFailed(Exception):
 
 
 class StateMachine(object):
-    """States and guarded transitions, checked for consistency on creation."""
+    """States and guarded transitions, checked for consistency on creation.
 
-    def __init__(self, initial, transitions):
+    ``facts``: the namedtuple class the PAB's facts are; every guard must
+    read only its fields (None: the guards read no facts).
+    """
+
+    def __init__(self, initial, transitions, facts=None):
         self.initial = initial
         self.transitions = tuple(transitions)
+        self.facts = facts
         self.states = tuple(collections.OrderedDict.fromkeys(
             [initial] + [t.source for t in self.transitions] + [t.target for t in self.transitions]))
         self.assert_consistent()
+        self._check_fields()
+
+    def _check_fields(self):
+        """Every guard reads fields the facts have."""
+        known = set(self.facts._fields) if self.facts is not None else set()
+        for t in self.transitions:
+            unknown = fields(t.guard) - known
+            if unknown:
+                raise ValueError('guard of %s -> %s reads %s, which the facts do not have'
+                                 % (t.source, t.target, ', '.join(sorted(unknown))))
 
     def assert_consistent(self):
         """Every state but END has an exit and is reachable from the start."""

@@ -6,7 +6,7 @@ Sideways LEFT) or on its right side (0, Clamp Sideways RIGHT). The report
 built the upright case; nothing in its table depends on which way is the
 target: "straight" and "nominal" are the regions of Table 5.4 measured
 around the target (config/sequencer.yaml gives them around pi/2), and eqs
-5.1 and 5.2 turn toward the target instead of toward pi/2 (issue 10.2).
+5.1 and 5.2 turn toward the target instead of toward pi/2.
 Only the guards of the full clamp follow the target: lying on a side the
 V spans the pipe's chord at the axis height, so it presses the walls short
 of Table 5.2's -0.77 rad; a full clamp there is judged by the
@@ -35,8 +35,8 @@ AND springs, :mod:`pirate.sequencer.clamp_state`); orientation and rotation
 come from the robot.
 
 A rotate rear whose eq 5.2 target lies beyond the +-0.7 rad limit has not
-done its job (issue 10: the rear nominal but not straight with the rotation
-at its limit looped unclamp rear / rotate rear / clamp rear). The fact
+done its job (the rear nominal but not straight with the rotation at its
+limit would loop unclamp rear / rotate rear / clamp rear). The fact
 ``limited`` remembers it: the rear is clamped again where it is, and the
 front is unclamped and turned upright (eq 5.1), which brings the rotation
 back from its limit, before the rear turns again.
@@ -48,7 +48,8 @@ from pirate.robot import safety
 from pirate.sequencer import clamp_state
 from pirate.sequencer.guards import CLAMP_BENDS
 from pirate.sequencer.pabs import codes
-from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, PabFailed, StateMachine, Transition
+from pirate.sequencer.pabs.base import ALWAYS, END, Pab, PabFailed, StateMachine, Transition
+from pirate.sequencer.pabs.expr import all_of, any_of, equals, fact, named, not_
 
 CHANGE_MODES = 'change control modes'
 MOVING_FRONT = 'moving front'
@@ -63,64 +64,59 @@ CLAMPING_FRONT_CUSTOM = 'clamping front custom'
 
 NONE, CUSTOM, FULL = 'none', 'custom', 'full'
 
-#: What the guards look at. front/rear: NONE, CUSTOM or FULL clamp;
-#: lift: 0 down, 1 first non-nominal lift, 2 lifted for a full front clamp;
-#: limited: the last rotate rear was clipped at the rotation limit.
+#: What the guards look at (each fact below says what its field is).
 Facts = collections.namedtuple('Facts', 'nominal_start straight aligned front rear lift limited')
 
+NOMINAL_START = fact('nominal_start', 'nominal start', "the roll at the start was in Table 5.4's nominal region")
+STRAIGHT = fact('straight', means="the rear's roll in Table 5.4's straight region around the target")
+ALIGNED = fact('aligned', means='the rotation within the align tolerance of 0: the front as straight as the rear')
+LIMITED = fact('limited', means='the last rotate rear was clipped at the rotation limit')
+FRONT_CLAMPED = named('front clamped', not_(equals('front', NONE)), 'the front clamp is custom or full')
+REAR_CLAMPED = named('rear clamped', not_(equals('rear', NONE)), 'the rear clamp is custom or full')
+FRONT_FULL, REAR_FULL = equals('front', FULL), equals('rear', FULL)
+FRONT_CUSTOM, REAR_CUSTOM = equals('front', CUSTOM), equals('rear', CUSTOM)
+#: lift: 0 down, 1 first non-nominal lift, 2 lifted for a full front clamp.
+FRONT_LIFTED = named('front lifted', not_(equals('lift', 0)), 'the front lifted once or twice (lift 1 or 2)')
+FULLY_LIFTED = named('front fully lifted', equals('lift', 2), 'the front lifted for a full front clamp (lift 2)')
 
-def _g(text, test):
-    return Guard(text, test)
+DONE = named('done', all_of(FRONT_FULL, REAR_FULL, STRAIGHT, ALIGNED), 'clamped full, straight and aligned')
+CUSTOM_NEEDED = named('custom needed', all_of(not_(NOMINAL_START), not_(STRAIGHT)),
+                      "the custom clamps of Table 5.3: a non-nominal start, the rear not yet straight")
 
-
-DONE = _g('front full AND rear full AND straight AND aligned',
-          lambda f: f.front == FULL and f.rear == FULL and f.straight and f.aligned)
-CUSTOM_NEEDED = lambda f: not f.nominal_start and not f.straight  # noqa: E731
-
+T = Transition
 TRANSITIONS = (
-    Transition(CHANGE_MODES, END, DONE),
-    Transition(CHANGE_MODES, MOVING_FRONT, _g('NOT done AND nominal start',
-                                              lambda f: not DONE.test(f) and f.nominal_start)),
-    Transition(CHANGE_MODES, CLAMPING_REAR_CUSTOM, _g('NOT done AND non-nominal start',
-                                                      lambda f: not DONE.test(f) and not f.nominal_start)),
-    Transition(MOVING_FRONT, CLAMPING_REAR, _g('rear not clamped', lambda f: f.rear == NONE)),
-    Transition(MOVING_FRONT, CLAMPING_FRONT, _g('rear clamped AND front not clamped AND nominal start',
-                                                lambda f: f.rear != NONE and f.front == NONE and f.nominal_start)),
-    Transition(MOVING_FRONT, CLAMPING_FRONT_CUSTOM,
-               _g('rear clamped AND front not clamped AND non-nominal start',
-                  lambda f: f.rear != NONE and f.front == NONE and not f.nominal_start)),
-    Transition(MOVING_FRONT, UNCLAMPING_REAR, _g('rear clamped AND front clamped',
-                                                 lambda f: f.rear != NONE and f.front != NONE)),
-    Transition(CLAMPING_REAR, CLAMPING_FRONT, _g('front not clamped', lambda f: f.front == NONE)),
-    Transition(CLAMPING_REAR, UNCLAMPING_REAR, _g('front clamped AND NOT straight AND NOT limited',
-                                                  lambda f: f.front != NONE and not f.straight and not f.limited)),
-    Transition(CLAMPING_REAR, UNCLAMPING_FRONT,
-               _g('front clamped AND ((straight AND (front custom OR NOT aligned)) OR (NOT straight AND limited))',
-                  lambda f: f.front != NONE and ((f.straight and (f.front == CUSTOM or not f.aligned))
-                                                 or (not f.straight and f.limited)))),
-    Transition(CLAMPING_REAR, END, DONE),
-    Transition(CLAMPING_FRONT, CLAMPING_REAR, _g('rear not clamped', lambda f: f.rear == NONE)),
-    Transition(CLAMPING_FRONT, UNCLAMPING_REAR, _g('rear clamped AND (NOT straight OR rear custom)',
-                                                  lambda f: f.rear != NONE and (not f.straight or f.rear == CUSTOM))),
-    Transition(CLAMPING_FRONT, UNCLAMPING_FRONT, _g('rear full AND straight AND NOT aligned',
-                                                    lambda f: f.rear == FULL and f.straight and not f.aligned)),
-    Transition(CLAMPING_FRONT, END, DONE),
-    Transition(UNCLAMPING_REAR, ROTATING_REAR, ALWAYS),
-    Transition(ROTATING_REAR, CLAMPING_REAR_CUSTOM, _g('non-nominal start AND NOT straight', CUSTOM_NEEDED)),
-    Transition(ROTATING_REAR, CLAMPING_REAR, _g('nominal start OR straight', lambda f: not CUSTOM_NEEDED(f))),
-    Transition(UNCLAMPING_FRONT, ROTATING_FRONT, ALWAYS),
-    Transition(ROTATING_FRONT, MOVING_FRONT, _g('front not lifted', lambda f: f.lift == 0)),
-    Transition(ROTATING_FRONT, CLAMPING_FRONT_CUSTOM, _g('front lifted AND non-nominal start AND NOT straight',
-                                                         lambda f: f.lift > 0 and CUSTOM_NEEDED(f))),
-    Transition(ROTATING_FRONT, CLAMPING_FRONT, _g('front lifted AND (nominal start OR straight)',
-                                                  lambda f: f.lift > 0 and not CUSTOM_NEEDED(f))),
-    Transition(CLAMPING_FRONT_CUSTOM, MOVING_FRONT, _g('front not fully lifted', lambda f: f.lift < 2)),
-    Transition(CLAMPING_FRONT_CUSTOM, UNCLAMPING_REAR, _g('front fully lifted', lambda f: f.lift == 2)),
-    Transition(CLAMPING_REAR_CUSTOM, ROTATING_FRONT, _g('front not clamped', lambda f: f.front == NONE)),
-    Transition(CLAMPING_REAR_CUSTOM, UNCLAMPING_FRONT, _g('front clamped', lambda f: f.front != NONE)),
+    # state               next state             guard
+    T(CHANGE_MODES,          END,                   DONE),
+    T(CHANGE_MODES,          MOVING_FRONT,          all_of(not_(DONE), NOMINAL_START)),
+    T(CHANGE_MODES,          CLAMPING_REAR_CUSTOM,  all_of(not_(DONE), not_(NOMINAL_START))),
+    T(MOVING_FRONT,          CLAMPING_REAR,         not_(REAR_CLAMPED)),
+    T(MOVING_FRONT,          CLAMPING_FRONT,        all_of(REAR_CLAMPED, not_(FRONT_CLAMPED), NOMINAL_START)),
+    T(MOVING_FRONT,          CLAMPING_FRONT_CUSTOM, all_of(REAR_CLAMPED, not_(FRONT_CLAMPED), not_(NOMINAL_START))),
+    T(MOVING_FRONT,          UNCLAMPING_REAR,       all_of(REAR_CLAMPED, FRONT_CLAMPED)),
+    T(CLAMPING_REAR,         CLAMPING_FRONT,        not_(FRONT_CLAMPED)),
+    T(CLAMPING_REAR,         UNCLAMPING_REAR,       all_of(FRONT_CLAMPED, not_(STRAIGHT), not_(LIMITED))),
+    T(CLAMPING_REAR,         UNCLAMPING_FRONT,      all_of(FRONT_CLAMPED,
+                                                           any_of(all_of(STRAIGHT, any_of(FRONT_CUSTOM, not_(ALIGNED))),
+                                                                  all_of(not_(STRAIGHT), LIMITED)))),
+    T(CLAMPING_REAR,         END,                   DONE),
+    T(CLAMPING_FRONT,        CLAMPING_REAR,         not_(REAR_CLAMPED)),
+    T(CLAMPING_FRONT,        UNCLAMPING_REAR,       all_of(REAR_CLAMPED, any_of(not_(STRAIGHT), REAR_CUSTOM))),
+    T(CLAMPING_FRONT,        UNCLAMPING_FRONT,      all_of(REAR_FULL, STRAIGHT, not_(ALIGNED))),
+    T(CLAMPING_FRONT,        END,                   DONE),
+    T(UNCLAMPING_REAR,       ROTATING_REAR,         ALWAYS),
+    T(ROTATING_REAR,         CLAMPING_REAR_CUSTOM,  CUSTOM_NEEDED),
+    T(ROTATING_REAR,         CLAMPING_REAR,         not_(CUSTOM_NEEDED)),
+    T(UNCLAMPING_FRONT,      ROTATING_FRONT,        ALWAYS),
+    T(ROTATING_FRONT,        MOVING_FRONT,          not_(FRONT_LIFTED)),
+    T(ROTATING_FRONT,        CLAMPING_FRONT_CUSTOM, all_of(FRONT_LIFTED, CUSTOM_NEEDED)),
+    T(ROTATING_FRONT,        CLAMPING_FRONT,        all_of(FRONT_LIFTED, not_(CUSTOM_NEEDED))),
+    T(CLAMPING_FRONT_CUSTOM, MOVING_FRONT,          not_(FULLY_LIFTED)),
+    T(CLAMPING_FRONT_CUSTOM, UNCLAMPING_REAR,       FULLY_LIFTED),
+    T(CLAMPING_REAR_CUSTOM,  ROTATING_FRONT,        not_(FRONT_CLAMPED)),
+    T(CLAMPING_REAR_CUSTOM,  UNCLAMPING_FRONT,      FRONT_CLAMPED),
 )
 
-MACHINE = StateMachine(CHANGE_MODES, TRANSITIONS)
+MACHINE = StateMachine(CHANGE_MODES, TRANSITIONS, facts=Facts)
 
 
 #: What a sensed clamp class means to this table at the start: a part only

@@ -9,7 +9,7 @@ until the wheels stand still. Only when the robot
 reports no odometry (NaN) does it fall back to the report's time-based drive,
 eq 5.3: x = (v0 + vf) t / 2 with v0 = 0, so t = 2 x / vf.
 
-Bounded independently of the odometry it waits on (issue 14.1): while the
+Bounded independently of the odometry it waits on (a wheel encoder may fail): while the
 wheels are commanded, odometry must gain ``no_progress_mm`` every
 ``no_progress_s`` of robot time, else the drive aborts (silent or broken
 wheel encoders, slipping wheels: the odometry is their median,
@@ -32,9 +32,11 @@ from pirate.sequencer.pabs.wheels import Progress, speed_problem, stop_wheels
 DRIVING = 'driving'
 STOPPING = 'stopping'
 
+T = Transition
 MACHINE = StateMachine(DRIVING, (
-    Transition(DRIVING, STOPPING, ALWAYS),
-    Transition(STOPPING, END, ALWAYS),
+    # state   next state  guard
+    T(DRIVING,  STOPPING, ALWAYS),
+    T(STOPPING, END,      ALWAYS),
 ))
 
 MIN_WAIT_S = 0.01       # s: a wait past the deadline still checks its guard once

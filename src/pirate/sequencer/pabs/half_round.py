@@ -15,7 +15,7 @@ too (Pab.follows): a turn that stopped in its corner, bringing the rear
 through with the middle still round, or steering with the front module
 dropped into the opening, the robot not moved since.
 """
-from pirate.sequencer.pabs import corner, junction
+from pirate.sequencer.pabs import corner, junction_table
 
 #: The guard row of the front tilt at which a turn's steer has put the front module in the opening.
 STEERED_ROW = 'home_after_steering'
@@ -52,7 +52,7 @@ def stopped_steering(view, guards, after):
     """The last goal was a turn that stopped steering its front into the
     new pipe, and the robot has not moved since. Not one that ended for
     want of a junction: it steered along a straight pipe."""
-    return (_stopped_here(view, guards, after) and after.state == junction.STEERING_FRONT
+    return (_stopped_here(view, guards, after) and after.state == junction_table.STEERING_FRONT
             and not after.junction_missing)
 
 
@@ -75,5 +75,5 @@ def _stopped_in_a_corner(view, guards, after, sensed):
     resume_middle_rad), and the robot has not moved since."""
     if not _stopped_here(view, guards, after):
         return False
-    return after.state in junction.CORNER_STATES or (
-        after.state == junction.BRINGING_REAR and sensed.get('middle_round'))
+    return after.state in junction_table.CORNER_STATES or (
+        after.state == junction_table.BRINGING_REAR and sensed.get('middle_round'))

@@ -5,7 +5,7 @@ control modes, unclamp front, unclamp rear, move the front module down.
 A rotation left away from 0 (a cancel, a rotation at its limit) is
 aligned while the rear still holds the robot (the free front part turns,
 Table 4.5): otherwise the next Clamp Straight starts with the rotation at
-its limit and loops there (issue 10). An aligned robot runs the report's
+its limit and loops there. An aligned robot runs the report's
 steps unchanged. The wheels are stopped first: Home starts from any pose,
 a cancelled Drive included. Each unclamp waits for its open guard, so a
 part that was only partly clamped (or free) passes at once. A front module
@@ -28,7 +28,8 @@ import collections
 
 from pirate.sequencer.guards import CLAMP_BENDS
 from pirate.sequencer.pabs import corner, half_round
-from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, StateMachine, Transition
+from pirate.sequencer.pabs.base import ALWAYS, END, Pab, StateMachine, Transition
+from pirate.sequencer.pabs.expr import fact, not_
 from pirate.state.feed import TimedOut
 
 CHANGE_MODES = 'change control modes'
@@ -44,33 +45,31 @@ DOWN_ROW = 'move_front_down'
 #: The row of how far Bend I may bend with the front part along a straight pipe.
 ALONG_ROW = 'home_front_down'
 
-#: What Home's guards look at: aligned = |rotation| within the align tolerance;
-#: lifted = front tilt above the ``above`` of the diameter's ``move_front_home`` row;
-#: along = Bend I at most the ``bend_i_max_rad`` of its ``home_front_down`` row,
-#: and the last goal not a turn that stopped steering the front into an
-#: opening where the robot still is (Pab.follows: lowered after that, the
-#: front pried the Bend I wheel on the wall with 16.9 N, the robot weighing
-#: 10.5 N, with Bend I at -0.55 rad: twin, 90 mm mitre bend cancelled 19 s in).
+#: What Home's guards look at (each fact below says what its field is).
 Facts = collections.namedtuple('Facts', 'aligned lifted along', defaults=(False, True))
 
-ALIGNED = Guard('aligned', lambda f: f.aligned)
-NOT_ALIGNED = Guard('NOT aligned', lambda f: not f.aligned)
-LIFTED = Guard('front lifted', lambda f: f.lifted)
-NOT_LIFTED = Guard('NOT front lifted', lambda f: not f.lifted)
-ALONG = Guard('front along the pipe', lambda f: f.along)
-NOT_ALONG = Guard('NOT front along the pipe', lambda f: not f.along)
+ALIGNED = fact('aligned', means='|rotation| within the align tolerance')
+LIFTED = fact('lifted', 'front lifted', "front tilt above the ``above`` of the diameter's ``move_front_home`` row")
+#: Lowered after a turn that stopped steering into an opening, the front pried
+#: the Bend I wheel on the wall with 16.9 N, the robot weighing 10.5 N, with
+#: Bend I at -0.55 rad (twin, 90 mm mitre bend cancelled 19 s in).
+ALONG = fact('along', 'front along the pipe', "Bend I at most the ``bend_i_max_rad`` of its ``home_front_down`` row, "
+                                              'and the last goal not a turn that stopped steering the front into an '
+                                              'opening where the robot still is')
 
+T = Transition
 MACHINE = StateMachine(CHANGE_MODES, (
-    Transition(CHANGE_MODES, UNCLAMPING_FRONT, NOT_LIFTED),
-    Transition(CHANGE_MODES, LOWERING_FRONT, LIFTED),
-    Transition(LOWERING_FRONT, UNCLAMPING_FRONT, ALWAYS),
-    Transition(UNCLAMPING_FRONT, UNCLAMPING_REAR, ALIGNED),
-    Transition(UNCLAMPING_FRONT, ALIGNING, NOT_ALIGNED),
-    Transition(ALIGNING, UNCLAMPING_REAR, ALWAYS),
-    Transition(UNCLAMPING_REAR, MOVING_FRONT_DOWN, ALONG),
-    Transition(UNCLAMPING_REAR, END, NOT_ALONG),
-    Transition(MOVING_FRONT_DOWN, END, ALWAYS),
-))
+    # state           next state         guard
+    T(CHANGE_MODES,      UNCLAMPING_FRONT,  not_(LIFTED)),
+    T(CHANGE_MODES,      LOWERING_FRONT,    LIFTED),
+    T(LOWERING_FRONT,    UNCLAMPING_FRONT,  ALWAYS),
+    T(UNCLAMPING_FRONT,  UNCLAMPING_REAR,   ALIGNED),
+    T(UNCLAMPING_FRONT,  ALIGNING,          not_(ALIGNED)),
+    T(ALIGNING,          UNCLAMPING_REAR,   ALWAYS),
+    T(UNCLAMPING_REAR,   MOVING_FRONT_DOWN, ALONG),
+    T(UNCLAMPING_REAR,   END,               not_(ALONG)),
+    T(MOVING_FRONT_DOWN, END,               ALWAYS),
+), facts=Facts)
 
 
 class Home(Pab):
@@ -153,8 +152,8 @@ def _corner_hint(ctx, after):
     manager restarted since, or the robot moved, it is tried. After a turn
     stopped steering in, Home is refused only with the front module down in
     the opening (``home_after_steering``); above it the unclamp may still
-    block, and re-sending the turn is the way on (twin, notes/issue-10.md
-    stop 31: every re-sent turn finished)."""
+    block, and re-sending the turn is the way on (twin: every re-sent turn
+    finished)."""
     view = ctx.feed.latest()
     sensed = corner.facts(ctx.guards, view)
     sensed.pop('rear_round', None)

@@ -1,96 +1,18 @@
-"""Take T-joint and Take mitre bend (report 4.7.4; issue 10.5): one machine.
+"""Take T-joint and Take mitre bend (report 4.7.4): what each state does.
 
 The report: "start clamped, then detect when the front part loses
 traction, unclamp and rotate according to the desired direction and
 reclamp the front part. This process has to be repeated so that the rear
-part ... pass[es] the bend in the same fashion"; a T-joint "the same, plus
-the open side with which no contact is possible". One table serves both
-junction kinds and every direction; what differs is data: the clamp the
-robot must hold before it starts (straight for a turn up or down,
-sideways toward a left / right turn, as :mod:`pirate.sequencer.junctions`
-rules; straight on, the clamp whose front V's apex faces the open side:
-straight for a side open upward, sideways toward one open left or right).
+part ... pass[es] the bend in the same fashion". One class serves both
+junction kinds and every direction; what differs is data: :data:`JUNCTIONS`
+(the clamps a goal starts from, :mod:`pirate.sequencer.junctions`' rules),
+:data:`TAKEN` (what is built) and the diameter's ``junction`` and ``turn``
+guard rows (config/guards_<mm>.yaml).
 
-Straight on (T-joint): look for the junction (drive until the front V
-loses its wall, :mod:`pirate.sequencer.junction_sensing`, or abort after
-the goal's distance with ``junction_missing``), stop, open the front V
-partly (the partial unclamp leaves it held by the worms), drive the front
-part across, clamp the front, open the rear V, drive the rear part across,
-clamp the rear: the robot ends clamped in the pipe after the junction, in
-the clamp it started in; if re-clamping rolled it out of that clamp's
-straight region (the twin rolled 0.05 rad doing so,
-bench/pab_junction_sweep), the clamp machine re-adjusts it. The part that
-crosses is open, so neither V presses toward the open side "with which no
-contact is possible"; lying on a side each V instead presses lightly
-(:func:`~pirate.sequencer.pabs.turn_motions.open_to_cross`). Each part
-crosses by the odometry of the other, clamped one.
-
-A turn (mitre bend LEFT / RIGHT; T-joint LEFT / RIGHT, entered through its
-branch turning into the run whose other end is open, or entered through its
-run turning into the branch with the run going on ahead: the PAB cannot
-tell them apart and takes them all with the same steps), in the robot's
-own frame: clamped sideways toward the turn, the new pipe lies on the tilt-positive side of
-the V's plane, which is horizontal (gravity does not load the steering).
-A clamp toward the turn that a drive rolled out of its straight region
-(still within the nominal one) is re-adjusted first, as Clamp Sideways
-does (:data:`RE_ADJUST`; straight on the same, from the clamp it holds).
-Lift the front module toward the turn, open the front V, level the front
-part on the side in 110 mm (the rotation:
-:func:`~pirate.sequencer.pabs.turn_motions.level_front`; not when resumed),
-then drive with Bend I / II in torque toward the turn side while the front tilt keeps the
-front module along the new pipe (pi/2 - Bend I - Bend II): the front part
-rides the side wall and turns into the opening where there is one. Bend II
-round the corner is the sensed sign of the junction (in a straight pipe
-the walls keep it far below): no opening within the goal's distance ends
-the goal with ``junction_missing``; wheels that stand on end while it
-steers (an edge the front does not get past) back the front off and it
-steers on (:meth:`TakeJunction._steer_until_round`). In the twin the
-front module meets a mitre's far wall before the front V loses a wall, and the odometry wheel
-(Bend I's) spins free there, so the straight-on sensing sees nothing; the
-steering finds the opening from 210 mm before the bend as from its far
-wall (bench/junction_turn_probe). Then clamp the front at the corner
-(Bend I's spring on the wall, Bend II carrying the turn), swing the middle
-round with the rear still clamped and driving (Bend II opening once the
-middle has started round, so it follows the front where no wall lies
-ahead), let the front pull the rear through (Bend III opening, Bend IV toward the turn side) until Bend
-III is past straight, clamp the rear, the front, drive on so the rear
-module leaves the corner, and Clamp Sideways re-adjusts if it must. Every
-guard is in the ``turn`` row of config/guards_<mm>.yaml: measured in the
-twin in 90 mm, derived from them and the geometry in 110 mm (checked in
-the twin).
-
-A turn cancelled on the way and re-sent (same direction; the kind is not
-sensed, the steps are the same) goes on from where the robot senses it is:
-from CHANGE_MODES the table's resume guards read the sensed corner facts
-(:data:`Facts`; ``resume_*`` keys of the ``turn`` row, measured with
-bench/junction_turn_resume --trace) and enter the step that continues it,
-after pressing the clamped parts again (the safe hold leaves them held by
-their worms only). check() accepts exactly the robots the table has a
-first step for, and says what it senses otherwise: a robot half round a
-corner is refused a turn toward the other side and straight on; the front
-clamped and the rear partly, no bend round a corner, is what clamping the
-rear past the corner and a part-clamped robot in a straight pipe both look
-like: Clamp Sideways first. Cancelled once the rear had come round (clamping
-the rear, driving into the new pipe, straightening after it), what the
-robot senses is ambiguous or reads like a robot clamped before a bend: there
-the server's record of this same goal decides (:class:`PastCorner`,
-:meth:`TakeJunction.unfinished`), and the re-sent goal clamps, drives what
-is left of the drive in, re-adjusts, if the odometry says the robot has not
-moved since.
-
-A turn's speed: the goal's ``speed`` (0: the ``turn`` row's
-``steer_speed``) sets the steering, the swing of the middle and the drive
-into the new pipe, within the row's ``goal_speed_min`` ..
-``goal_speed_max`` (measured in the twin, :data:`SPEED_WHY`); any other
-speed is refused at once with the reason. Slower than ``steer_speed`` the
-time bounds of the steering and the swing stretch by the ratio of the
-speeds (they were measured at it). The front pulls the rear through at the
-row's ``pull_speed`` whatever the goal says: where a turn leaves the robot
-(config/supervisory.yaml turn_end_mm) was measured at it.
-
-Which (kind, direction) the PAB takes is :data:`TAKEN`: straight on
-through a T-joint, a mitre bend or a T-joint left or right (90 and 110
-mm). Turns up or down are refused with the reason.
+The transition table: :mod:`pirate.sequencer.pabs.junction_table`; the
+motions of a turn: :mod:`pirate.sequencer.pabs.turn_motions`; the sensing
+straight on: :mod:`pirate.sequencer.junction_sensing`. The whole story,
+state by state: doc/sequencer.md.
 """
 import collections
 import math
@@ -101,52 +23,14 @@ from pirate.sequencer.junctions import TURNS
 from pirate.sequencer.pabs import codes
 from pirate.sequencer.pabs import corner as corner_sensing
 from pirate.sequencer.pabs import turn_motions as motions
-from pirate.sequencer.pabs.base import ALWAYS, END, Guard, Pab, PabFailed, StateMachine, Transition
+from pirate.sequencer.pabs.base import Pab, PabFailed
 from pirate.sequencer.pabs.clamp import Clamp, in_region, region_around
+from pirate.sequencer.pabs.junction_table import (
+    BRINGING_REAR, CHANGE_MODES, CLAMPING_AT_CORNER, CLAMPING_FRONT, CLAMPING_REAR, CROSSING_FRONT, CROSSING_REAR,
+    DRIVING_IN, LIFTING_FRONT, MACHINE, RE_ADJUSTING, SEARCHING, STEERING_FRONT, STOPPING, STRAIGHTENING,
+    SWINGING_MIDDLE, UNCLAMPING_FRONT, UNCLAMPING_REAR, Facts, first_step)
 from pirate.sequencer.pabs.wheels import Progress, speed_problem, stop_wheels
 from pirate.state.feed import TimedOut
-
-CHANGE_MODES = 'change control modes'
-SEARCHING = 'looking for the junction'
-STOPPING = 'stopping'
-UNCLAMPING_FRONT = 'unclamping front partial'
-CROSSING_FRONT = 'driving the front across'
-CLAMPING_FRONT = 'clamping front'
-UNCLAMPING_REAR = 'unclamping rear partial'
-CROSSING_REAR = 'driving the rear across'
-CLAMPING_REAR = 'clamping rear'
-STRAIGHTENING = 'straightening (Clamp Straight)'
-LIFTING_FRONT = 'lifting the front toward the turn'
-STEERING_FRONT = 'steering the front into the new pipe'
-CLAMPING_AT_CORNER = 'clamping front at the corner'
-SWINGING_MIDDLE = 'swinging the middle round'
-BRINGING_REAR = 'bringing the rear through'
-#: The states of a turn half round its corner, before the rear comes round:
-#: a turn stopped in one leaves the robot where only the turn can go on.
-CORNER_STATES = (CLAMPING_AT_CORNER, SWINGING_MIDDLE)
-DRIVING_IN = 'driving into the new pipe'
-RE_ADJUSTING = 're-adjusting the clamp'
-
-#: found: the junction was sensed; front / rear: the part is clamped
-#: (full, as the robot senses it: angles and spring); straight: the rear's
-#: roll in Table 5.4's straight region around the clamp it started in;
-#: turn: the goal turns into a new pipe (data of the goal, not sensed).
-#: Where in a turn a cancelled robot stands, as it senses it (the ``turn``
-#: row's angles; read after every step, looked at only from CHANGE_MODES):
-#: toward: the rear's roll within the nominal band (Table 5.4) around the
-#: side the goal turns to; front_round: Bend II round the corner (the front
-#: has turned into the new pipe, :func:`~pirate.sequencer.pabs.turn_motions.steered`); middle_round: Bend III
-#: at least ``resume_middle_rad`` (the middle swinging round; a straight
-#: pipe keeps it below); middle_swung: Bend III at least ``swing_rad``;
-#: rear_round: Bend IV at least ``resume_rear_rad`` (the rear V bent toward
-#: the turn side, coming round the corner).
-#: Remembered, not sensed (the server's record of this same goal, ended
-#: without success, :class:`PastCorner`; true only while the odometry lies
-#: within the record's span, so a robot moved since is not resumed):
-#: rear_through: it ended after bringing the rear through, clamping;
-#: driving_in: while driving into the new pipe; driven_in: after it.
-Facts = collections.namedtuple('Facts', 'found front rear straight turn toward front_round middle_round middle_swung '
-                                        'rear_round rear_through driving_in driven_in', defaults=(False,) * 8)
 
 #: What a turn that did not succeed leaves once its rear came round the
 #: corner, for the same goal re-sent (the server keeps it,
@@ -156,108 +40,6 @@ Facts = collections.namedtuple('Facts', 'found front rear straight turn toward f
 #: through; the drive in from its start to its planned end; once driven,
 #: to where the wheels stopped.
 PastCorner = collections.namedtuple('PastCorner', 'fact from_mm to_mm')
-
-FOUND = Guard('junction sensed', lambda f: f.found)
-TURN = Guard('turn', lambda f: f.turn)
-ON = Guard('NOT turn', lambda f: not f.turn)
-DONE = Guard('NOT turn AND front clamped AND rear clamped AND straight',
-             lambda f: not f.turn and f.front and f.rear and f.straight)
-
-
-def _in_a_corner(f):
-    """Some bend says the robot is (partly) round a corner."""
-    return f.front_round or f.middle_round or f.middle_swung or f.rear_round
-
-
-def _past_the_corner(f):
-    """The server's record says this turn's rear had come round the corner."""
-    return f.rear_through or f.driving_in or f.driven_in
-
-
-#: A turn from its start: clamped sideways toward it, no bend round a corner.
-START = Guard('turn AND front clamped AND rear clamped AND straight AND NOT in a corner AND NOT past the corner',
-              lambda f: f.turn and f.front and f.rear and f.straight and not _in_a_corner(f)
-              and not _past_the_corner(f))
-#: Straight on from its start: clamped in the straight region of the clamp it holds (check() accepts no other).
-ON_START = Guard('NOT turn AND straight', lambda f: not f.turn and f.straight)
-#: A junction from a clamp that has rolled out of its straight region but not
-#: out of the nominal one (toward): the clamp re-adjusted first (Clamp
-#: Straight / Sideways from their nominal region), then the junction from its
-#: start. A drive rolls the clamped robot: twin, 1485 mm clamped sideways
-#: LEFT at 100 mm/s, 3.15 -> 3.03-3.04 rad before every run's mitre bend
-#: (bench/mission_sweep --world inspection_90); 930 mm upright up to 0.07 rad
-#: (bench/tee_drive_past).
-RE_ADJUST = Guard('front clamped AND rear clamped AND NOT straight AND toward AND NOT in a corner '
-                  'AND NOT past the corner',
-                  lambda f: f.front and f.rear and not f.straight and f.toward and not _in_a_corner(f)
-                  and not _past_the_corner(f))
-#: Resuming a turn cancelled on the way (re-sent, same direction): the step
-#: that continues it from what the robot senses. Each needs the roll toward
-#: the goal's side; "in a corner" is front_round OR middle_round OR
-#: middle_swung OR rear_round; "past the corner" is rear_through OR
-#: driving_in OR driven_in (remembered: the corner steps never resume there).
-RESUME_STEERING = Guard('turn AND toward AND rear clamped AND NOT front clamped AND NOT in a corner '
-                        'AND NOT past the corner',
-                        lambda f: f.turn and f.toward and f.rear and not f.front and not _in_a_corner(f)
-                        and not _past_the_corner(f))
-RESUME_AT_CORNER = Guard('turn AND toward AND rear clamped AND front_round AND NOT middle_round AND NOT middle_swung '
-                         'AND NOT past the corner',
-                         lambda f: f.turn and f.toward and f.rear and f.front_round and not f.middle_round
-                         and not f.middle_swung and not _past_the_corner(f))
-RESUME_SWINGING = Guard('turn AND toward AND rear clamped AND middle_round AND NOT middle_swung '
-                        'AND NOT past the corner',
-                        lambda f: f.turn and f.toward and f.rear and f.middle_round and not f.middle_swung
-                        and not _past_the_corner(f))
-RESUME_BRINGING = Guard('turn AND toward AND front clamped AND (rear clamped AND middle_swung OR NOT rear clamped '
-                        'AND (middle_round OR middle_swung OR rear_round)) AND NOT past the corner',
-                        lambda f: f.turn and f.toward and f.front and not _past_the_corner(f) and (
-                            (f.rear and f.middle_swung)
-                            or (not f.rear and (f.middle_round or f.middle_swung or f.rear_round))))
-RESUME_CLAMPING_REAR = Guard('turn AND toward AND rear_through AND NOT driving_in AND NOT driven_in AND front clamped',
-                             lambda f: f.turn and f.toward and f.rear_through and not f.driving_in
-                             and not f.driven_in and f.front)
-RESUME_DRIVING_IN = Guard('turn AND toward AND driving_in AND NOT driven_in AND front clamped AND rear clamped',
-                          lambda f: f.turn and f.toward and f.driving_in and not f.driven_in and f.front and f.rear)
-RESUME_STRAIGHTENING = Guard('turn AND toward AND driven_in', lambda f: f.turn and f.toward and f.driven_in)
-
-MACHINE = StateMachine(CHANGE_MODES, (
-    Transition(CHANGE_MODES, SEARCHING, ON_START),
-    Transition(CHANGE_MODES, LIFTING_FRONT, START),
-    Transition(CHANGE_MODES, RE_ADJUSTING, RE_ADJUST),
-    Transition(CHANGE_MODES, STEERING_FRONT, RESUME_STEERING),
-    Transition(CHANGE_MODES, CLAMPING_AT_CORNER, RESUME_AT_CORNER),
-    Transition(CHANGE_MODES, SWINGING_MIDDLE, RESUME_SWINGING),
-    Transition(CHANGE_MODES, BRINGING_REAR, RESUME_BRINGING),
-    Transition(CHANGE_MODES, CLAMPING_REAR, RESUME_CLAMPING_REAR),
-    Transition(CHANGE_MODES, DRIVING_IN, RESUME_DRIVING_IN),
-    Transition(CHANGE_MODES, STRAIGHTENING, RESUME_STRAIGHTENING),
-    Transition(RE_ADJUSTING, SEARCHING, ON_START),
-    Transition(RE_ADJUSTING, LIFTING_FRONT, START),
-    Transition(SEARCHING, STOPPING, FOUND),
-    Transition(STOPPING, UNCLAMPING_FRONT, ALWAYS),
-    Transition(LIFTING_FRONT, UNCLAMPING_FRONT, ALWAYS),
-    Transition(UNCLAMPING_FRONT, CROSSING_FRONT, ON),
-    Transition(UNCLAMPING_FRONT, STEERING_FRONT, TURN),
-    Transition(CROSSING_FRONT, CLAMPING_FRONT, ALWAYS),
-    Transition(STEERING_FRONT, CLAMPING_AT_CORNER, FOUND),
-    Transition(CLAMPING_AT_CORNER, SWINGING_MIDDLE, ALWAYS),
-    Transition(SWINGING_MIDDLE, BRINGING_REAR, ALWAYS),
-    Transition(BRINGING_REAR, CLAMPING_REAR, ALWAYS),
-    Transition(CLAMPING_FRONT, UNCLAMPING_REAR, Guard('NOT turn AND front clamped', lambda f: not f.turn and f.front)),
-    Transition(CLAMPING_FRONT, DRIVING_IN, Guard('turn AND front clamped', lambda f: f.turn and f.front)),
-    Transition(UNCLAMPING_REAR, CROSSING_REAR, ALWAYS),
-    Transition(CROSSING_REAR, CLAMPING_REAR, ALWAYS),
-    Transition(CLAMPING_REAR, END, DONE),
-    Transition(CLAMPING_REAR, STRAIGHTENING, Guard('NOT turn AND front clamped AND rear clamped AND NOT straight',
-                                                   lambda f: not f.turn and f.front and f.rear and not f.straight)),
-    Transition(CLAMPING_REAR, CLAMPING_FRONT, Guard('turn AND rear clamped', lambda f: f.turn and f.rear)),
-    Transition(DRIVING_IN, STRAIGHTENING, ALWAYS),
-    Transition(STRAIGHTENING, END, ALWAYS),
-))
-
-#: The states entered the moment the junction is sensed (straight on: stopping;
-#: a turn: clamping at the corner): where a localiser's anchor applies.
-SENSED_STATES = tuple(t.target for t in MACHINE.transitions if t.guard is FOUND)
 
 UPRIGHT = math.pi / 2
 #: Clamp orientations (rad, Fig 4.7) by name.
@@ -279,8 +61,8 @@ JUNCTIONS = {
 }
 #: (kind, direction) this PAB takes today; the rest are refused with the reason.
 TAKEN = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right'), ('tee', 'left'), ('tee', 'right')}
-#: Why a direction of a junction kind is not taken (tried in the twin: notes/issue-10.md, "Turns up" /
-#: "Turns down"; what a clamp holds in a steep pipe: bench/vertical_hold, stop 33).
+#: Why a direction of a junction kind is not taken (tried in the twin; what a
+#: clamp holds in a steep pipe: bench/vertical_hold).
 NOT_TAKEN = {
     'up': 'taking a bend up is not built: it leaves the front V alone carrying the robot in the pipe above, and '
           'in the twin one V alone does not hold the robot in a pipe 45 deg steep or more in 90 mm, 60 deg in '
@@ -311,7 +93,7 @@ def straight_sideways_problem(guards, speed):
 REAR_FIRST_WHY = 'taking a junction rear first is not built'
 
 #: Why a turn's speed has a range (config/guards_<mm>.yaml turn goal_speed_min / goal_speed_max;
-#: bench/junction_turn_probe --speed, notes/issue-10.md "A turn's speed").
+#: bench/junction_turn_probe --speed).
 SPEED_WHY = ("measured in the twin: faster, the rear's wheels pushed the front V, clamped at the corner, on "
              'along the new pipe and the middle never swung round (90 mm), or the front stood up to 140 s '
              "against a mitre's far wall (110 mm); slower, the drive into the new pipe stood (90 mm) or a "
@@ -425,7 +207,7 @@ class TakeJunction(Pab):
         facts = self.sensed_facts(guards, view)
         corner = corner_sensing.text(view, facts._asdict())
         if self.turning:
-            if _first_step(facts) is not None:
+            if first_step(facts) is not None:
                 return None
             return self._turn_refusal(view, guards, facts, corner)
         sensed = clamp_state.sensed(guards, view)
@@ -540,7 +322,7 @@ class TakeJunction(Pab):
         level (twin, 110 mm T-joint entered through its run, re-sent after a
         cancel while steering: levelled again, the rear's roll drifted to
         2.94 rad, past the band of the sideways clamp, and its clamp past the
-        corner timed out in 6 of 10; notes/issue-10.md "Levelling the front")."""
+        corner timed out in 6 of 10)."""
         if not self.turning:
             motions.open_to_cross(ctx, 'front')
             return
@@ -650,7 +432,7 @@ class TakeJunction(Pab):
         entered through its run: the front stood 40 s at the opening's far
         edge, rode on past and stood at the run's end for the rest of the
         goal; backed off 40 mm after 8 s it turned into the branch:
-        bench/pab_junction_sweep, notes/issue-10.md "Backing off an edge")."""
+        bench/pab_junction_sweep)."""
         prims, speed = ctx.prims, motions.turn_speed(ctx.goal, row)
         stand_s = float(row['back_off_after_s'])
         while True:
@@ -678,12 +460,6 @@ class TakeJunction(Pab):
         why += motions.backed_off_text(self.backed_off)
         return ('%s %s: junction sensed %.0f mm after the start (%s), %d motion primitives, ended clamped'
                 % (self.kind, self.direction, self.junction_odometry, why, len(ctx.prims.executed)))
-
-
-def _first_step(facts):
-    """The state the table enters from CHANGE_MODES with ``facts``, or None."""
-    fired = [t.target for t in MACHINE.exits(CHANGE_MODES) if t.guard.test(facts)]
-    return fired[0] if len(fired) == 1 else None
 
 
 def _taken_text():
