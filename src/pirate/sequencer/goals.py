@@ -4,7 +4,9 @@ Missions (pirate.supervisory.mission) and the panel map
 (pirate.panel.config) both name goals in words and are checked against
 these tables before anything is sent (SPEC 6, report Table 4.4). Pure.
 """
+from pirate.sequencer.junctions import STRAIGHT_CLAMP, label
 from pirate.sequencer.pabs import PABS, codes
+from pirate.sequencer.pabs.junction import JUNCTIONS, straight_sideways_problem
 
 #: PAB name -> goal code (Pirate.action's name constants).
 CODES = {row[0]: code for code, row in PABS.items()}
@@ -29,3 +31,18 @@ def built(pab, option=None, rear_first=False):
     if option is None and not rear_first:
         return True
     return pab_class.takes(CODES[pab], OPTIONS.get(option), rear_first)
+
+
+def start_clamps(pab, option, guards=None):
+    """Names (:func:`pirate.sequencer.junctions.label`) of the clamps the
+    junction PAB ``pab`` (goal name, 'T_JOINT' or 'MITRE_BEND') declares it
+    starts ``option`` (an option name, e.g. 'STRAIGHT') from; () for an
+    option it has none for. With ``guards`` (a diameter's,
+    pirate.sequencer.guards), straight on from a sideways clamp only where
+    they take it (junction.straight_sideways_problem)."""
+    clamps = JUNCTIONS[CODES[pab]][3].get(OPTIONS.get(option), (None, ()))[1]
+    if option != 'STRAIGHT' or guards is None:
+        return clamps
+    if straight_sideways_problem(guards, float('inf')):
+        return tuple(clamp for clamp in clamps if clamp == label(STRAIGHT_CLAMP))
+    return clamps

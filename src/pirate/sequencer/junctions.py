@@ -12,10 +12,10 @@ sideways (left or right)." Two rules behind it:
   vertical: clamp straight;
 - **sensing**: going straight through a T-joint the junction PAB senses the
   open side only with the front V's apex pressing toward it (its spring
-  unloads where the wall goes away, pirate.sequencer.junction_sensing;
-  notes/issue-10.md: upright below a hole above, lying on a side next to a
-  hole on that side; with the V facing away nothing is sensed and the goal
-  ends junction_missing). So clamp with the apex toward the open side:
+  unloads where the wall goes away, pirate.sequencer.junction_sensing; in
+  the twin: upright below a hole above, lying on a side next to a hole on
+  that side; with the V facing away nothing is sensed and the goal ends
+  junction_missing). So clamp with the apex toward the open side:
   straight (apex up) for a side open upward, sideways toward a side open
   left or right. No clamp of the PABs faces down (that would be upside
   down): a T-joint open downward cannot be gone straight through.
@@ -26,9 +26,9 @@ format (pirate.world.network) and the Pirate.action options give them.
 The planner asks :func:`required_clamp`, and drives past a T-joint open to
 a side clamped straight (:func:`driven_past`); whether the junction PAB starts
 from that clamp is the PAB's own declaration (its ``JUNCTIONS`` table),
-read by :func:`pab_start_clamps`, so a route the PAB cannot start is
-refused before the robot moves (pirate.supervisory.planner.check_runnable).
-Pure.
+read by :func:`pirate.sequencer.goals.start_clamps`, so a route the PAB
+cannot start is refused before the robot moves
+(pirate.supervisory.planner.check_runnable). Pure, and imports no PAB.
 """
 import collections
 
@@ -76,8 +76,8 @@ def driven_past(kind, direction, open_side):
     the Drive is the simpler way. Nothing is sensed on the way, so no junction
     anchors the odometry there. Twin: bench/tee_drive_past. A
     tee open downward is not driven past: lying on a side the drive stalled
-    over the hole (twin, 90 mm, both sides; notes/issue-10.md stop 32), and
-    upright too, at 232 mm in 9 of 10 runs (stop 33)."""
+    over the hole (twin, 90 mm, both sides), and upright too, at 232 mm in
+    9 of 10 runs (twin)."""
     return kind == 'tee' and direction == 'straight' and open_side in DRIVEN_PAST_OPEN
 
 
@@ -91,19 +91,3 @@ def is_turn(direction):
 def label(clamp):
     """The junction PAB's name for ``clamp`` ('straight', 'sideways LEFT', ...)."""
     return 'straight' if clamp == STRAIGHT_CLAMP else 'sideways %s' % clamp.side
-
-
-def pab_start_clamps(pab, option, guards=None):
-    """Names (:func:`label`) of the clamps the junction PAB ``pab`` (goal
-    name, 'T_JOINT' or 'MITRE_BEND') declares it starts ``option`` (an
-    option name, e.g. 'STRAIGHT') from; () for an option it has none for.
-    With ``guards`` (a diameter's, pirate.sequencer.guards), straight on from
-    a sideways clamp only where they take it (junction.straight_sideways_problem)."""
-    from pirate.sequencer import goals                  # here: the PAB module may import this one
-    from pirate.sequencer.pabs.junction import JUNCTIONS, straight_sideways_problem
-    clamps = JUNCTIONS[goals.CODES[pab]][3].get(goals.OPTIONS.get(option), (None, ()))[1]
-    if option != 'STRAIGHT' or guards is None:
-        return clamps
-    if straight_sideways_problem(guards, float('inf')):
-        return tuple(clamp for clamp in clamps if clamp == label(STRAIGHT_CLAMP))
-    return clamps

@@ -29,7 +29,7 @@ import collections
 
 from pirate.sequencer import goals
 from pirate.sequencer.guards import GuardBook, load_files
-from pirate.sequencer.junctions import STRAIGHT_CLAMP, driven_past, is_turn, label, pab_start_clamps, required_clamp
+from pirate.sequencer.junctions import STRAIGHT_CLAMP, driven_past, is_turn, label, required_clamp
 from pirate.sequencer.pabs.junction import REAR_FIRST_WHY
 from pirate.world.network import turns_at_corner
 
@@ -279,7 +279,7 @@ def _check_start_clamp(where, step, book):
     if step.junction is None or step.holds is None:
         return
     guards = book.for_diameter(step.pipe_diameter) if step.pipe_diameter else None
-    starts = pab_start_clamps(step.pab, step.option, guards)
+    starts = goals.start_clamps(step.pab, step.option, guards)
     if label(step.holds) not in starts:
         raise PlanError('%s: the route holds clamp %s there (the front V facing %s), but %s %s starts from '
                         'clamp %s only; the robot cannot take this route yet'
