@@ -121,7 +121,7 @@ class BadConfig(ValueError):
 
 
 #: Safety settings of config/sequencer.yaml and their allowed ranges
-#: (issue 14.6: checked at load, never silently accepted). Key path -> (low, high).
+#: (checked at load: a bad setting is refused, never silently accepted). Key path -> (low, high).
 RANGES = {
     ('primitive_timeout',): (1.0, 60.0),
     ('feedback_timeout',): (0.05, 2.0),

@@ -78,9 +78,9 @@ def drive_across(ctx, part):
     part, clamped on the wall: the crossing part's V is open, and lying on
     a side that part rests on its shells while its three wheels spin free
     (twin: 251 mm of the robot's odometry for 96 mm travelled, rear over a
-    T-joint's side hole, notes/issue-10.md). Lying on a side it drives at
+    T-joint's side hole). Lying on a side it drives at
     least the row's ``cross_speed_sideways``: the open front part on its
-    shells, pushed at 25 mm/s, stalled at the hole (twin, 90 mm, stop 30)."""
+    shells, pushed at 25 mm/s, stalled at the hole (twin, 90 mm)."""
     row, view = ctx.guards.row('junction'), ctx.feed.latest()
     speed = search_speed(ctx.goal, ctx.guards)
     if lying_on_a_side(ctx.guards, view, part):
@@ -102,7 +102,7 @@ def open_to_cross(ctx, part):
     caught the far edge. So there its outer bend presses lightly in torque
     (the junction row's ``cross_press_sideways_<part>``, counts; 0: open
     partly), the inner at 0: its wheels keep the walls and drive, and its
-    apex gives way over the hole (notes/issue-10.md, stop 30)."""
+    apex gives way over the hole (twin, 90 mm)."""
     view = ctx.feed.latest()
     press = float(ctx.guards.row('junction')['cross_press_sideways_%s' % part])
     if not press or not lying_on_a_side(ctx.guards, view, part):
@@ -159,8 +159,7 @@ def level_front(ctx, target):
     opening and backing off did not help; levelled first, every approach
     roll turned in. Only where the turn row says ``level_front``: in 90 mm,
     where every approach roll turned in without it, levelling made the pull
-    of the rear slip and the turn end 30 mm short in 2 of 3 probes
-    (notes/issue-10.md "Levelling the front")."""
+    of the rear slip and the turn end 30 mm short in 2 of 3 probes."""
     view = ctx.feed.latest()
     ctx.prims.rotate(math.remainder(view.orientation - target, 2 * math.pi), 'level the front')
 
@@ -265,7 +264,7 @@ def swing_middle(ctx):
     swing wedged the middle in the 110 mm T-joint entered through its branch
     (Bend III 0.66-0.78 rad, where it otherwise breaks free): hence only
     once the middle has started round. bench/junction_turn_probe --pab
-    T_JOINT --world tee_run_branch_left_90 (notes/issue-10.md)."""
+    T_JOINT --world tee_run_branch_left_90."""
     row, prims = ctx.guards.row('turn'), ctx.prims
     open_from, swung = float(row['swing_open_rad']), float(row['swing_rad'])
     opened = []
