@@ -16,7 +16,7 @@ export PYTHONDONTWRITEBYTECODE := 1
 WS ?= $(CURDIR)/.ws
 ENV := source $(WS)/devel/setup.bash &&
 
-.PHONY: deps link-package build demo test test-unit test-rostest test-firmware lint bench clean
+.PHONY: deps link-package build demo test test-unit test-rostest test-firmware lint bench docs clean
 
 deps:
 	@bash scripts/ensure_deps
@@ -48,6 +48,10 @@ test-rostest: build
 
 lint: build
 	@$(ENV) catkin_lint -W2 --strict --ignore package_path_name $(CURDIR)
+
+# The tables in doc/ generated from the code (pirate.docs): rewrites them in place.
+docs:
+	@python3 scripts/make_docs
 
 bench: build
 	@$(ENV) for b in bench/*; do python3 "$$b" || exit 1; done

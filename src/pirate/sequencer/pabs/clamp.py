@@ -71,13 +71,20 @@ NOMINAL_START = fact('nominal_start', 'nominal start', "the roll at the start wa
 STRAIGHT = fact('straight', means="the rear's roll in Table 5.4's straight region around the target")
 ALIGNED = fact('aligned', means='the rotation within the align tolerance of 0: the front as straight as the rear')
 LIMITED = fact('limited', means='the last rotate rear was clipped at the rotation limit')
-FRONT_CLAMPED = named('front clamped', not_(equals('front', NONE)), 'the front clamp is custom or full')
-REAR_CLAMPED = named('rear clamped', not_(equals('rear', NONE)), 'the rear clamp is custom or full')
-FRONT_FULL, REAR_FULL = equals('front', FULL), equals('rear', FULL)
-FRONT_CUSTOM, REAR_CUSTOM = equals('front', CUSTOM), equals('rear', CUSTOM)
+#: front / rear: the part's clamp, NONE, CUSTOM (Table 5.3) or FULL, as the
+#: primitives that succeeded left it (at the start: as the robot senses it).
+FRONT_FREE = equals('front', NONE, 'front free', 'the front part is not clamped')
+REAR_FREE = equals('rear', NONE, 'rear free', 'the rear part is not clamped')
+FRONT_FULL = equals('front', FULL, means='the front part is clamped with the full guards')
+REAR_FULL = equals('rear', FULL, means='the rear part is clamped with the full guards')
+FRONT_CUSTOM = equals('front', CUSTOM, means='the front part is clamped with the custom guards')
+REAR_CUSTOM = equals('rear', CUSTOM, means='the rear part is clamped with the custom guards')
+FRONT_CLAMPED = named('front clamped', not_(FRONT_FREE), 'custom or full')
+REAR_CLAMPED = named('rear clamped', not_(REAR_FREE), 'custom or full')
 #: lift: 0 down, 1 first non-nominal lift, 2 lifted for a full front clamp.
-FRONT_LIFTED = named('front lifted', not_(equals('lift', 0)), 'the front lifted once or twice (lift 1 or 2)')
-FULLY_LIFTED = named('front fully lifted', equals('lift', 2), 'the front lifted for a full front clamp (lift 2)')
+FRONT_DOWN = equals('lift', 0, 'front down', 'the front module not lifted for this clamp yet')
+FULLY_LIFTED = equals('lift', 2, 'front fully lifted', 'the front module lifted for a full front clamp')
+FRONT_LIFTED = named('front lifted', not_(FRONT_DOWN), 'lifted once (non-nominal start) or fully')
 
 DONE = named('done', all_of(FRONT_FULL, REAR_FULL, STRAIGHT, ALIGNED), 'clamped full, straight and aligned')
 CUSTOM_NEEDED = named('custom needed', all_of(not_(NOMINAL_START), not_(STRAIGHT)),
