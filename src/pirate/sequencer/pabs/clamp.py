@@ -2,44 +2,18 @@
 
 One machine and one class clamp the robot at a target orientation (Fig
 4.7): upright (pi/2, Clamp Straight), lying on its left side (pi, Clamp
-Sideways LEFT) or on its right side (0, Clamp Sideways RIGHT). The report
-built the upright case; nothing in its table depends on which way is the
-target: "straight" and "nominal" are the regions of Table 5.4 measured
-around the target (config/sequencer.yaml gives them around pi/2), and eqs
-5.1 and 5.2 turn toward the target instead of toward pi/2.
-Only the guards of the full clamp follow the target: lying on a side the
-V spans the pipe's chord at the axis height, so it presses the walls short
-of Table 5.2's -0.77 rad; a full clamp there is judged by the
-``clamp_sideways`` guards (derived from that chord) and the outer spring on
-the wall (:func:`pirate.sequencer.clamp_state.full_row`).
+Sideways LEFT) or on its right side (0, Clamp Sideways RIGHT). The
+"straight" and "nominal" regions of Table 5.4 are measured around the
+target, and eqs 5.1 and 5.2 turn toward it; lying on a side a full clamp
+is judged by the ``clamp_sideways`` guards and the outer spring on the
+wall (:func:`pirate.sequencer.clamp_state.full_row`).
 
 The transition table below is Table D.1 reconciled with the step lists the
-report observed (Tables 6.1-6.3), because the extracted Table D.1 is damaged
-and its "aligned" cannot hold where the steps need it to (after a rotation
-limited to 0.7 rad). Where it differs, the step lists win:
-
-- "partial" clamps are the custom clamps of Table 5.3; they are used while
-  the PAB started non-nominal and the rear part is not yet straight;
-- the front is lifted in up to two stages (0.105 rad, then 0.3 rad) when the
-  start is non-nominal, once (0.4 rad) otherwise (Table 5.3);
-- END needs both parts clamped with the full guards, the rear straight and
-  the rotation aligned, so the front (no IMU) is straight too;
-- rotate rear uses eq 5.2 as an increment on the current rotation (the
-  encoder is absolute, so the report's sequence only converges that way);
-  rotate front uses eq 5.1, or aligns when the rear is already straight
-  ("rotate front (to 0)" in Tables 6.2 and 6.3).
-
-Facts are read after every action: clamp states are remembered from the
-primitives that succeeded (the start's from what the robot senses, angles
-AND springs, :mod:`pirate.sequencer.clamp_state`); orientation and rotation
-come from the robot.
-
-A rotate rear whose eq 5.2 target lies beyond the +-0.7 rad limit has not
-done its job (the rear nominal but not straight with the rotation at its
-limit would loop unclamp rear / rotate rear / clamp rear). The fact
-``limited`` remembers it: the rear is clamped again where it is, and the
-front is unclamped and turned upright (eq 5.1), which brings the rotation
-back from its limit, before the rear turns again.
+report observed (Tables 6.1-6.3); where they differ, and why a rotate
+rear clipped at the rotation limit does not count as done (the fact
+``limited``): doc/sequencer.md, "Clamp Straight and Clamp Sideways".
+Clamp states are remembered from the primitives that succeeded (the
+start's from what the robot senses, :mod:`pirate.sequencer.clamp_state`).
 """
 import collections
 import math

@@ -1,26 +1,17 @@
 """Drive (report 4.7.4.2.2, 5.12): drive a signed distance while clamped.
 
 By odometry, as the report recommends: drive at the goal's speed until the
-remaining distance is what the robot covers in ``creep_lead`` s (a shorter
-drive creeps all the way), creep the
-rest at ``creep_speed`` (so the latency of state and setpoints, 0.1 s each,
-costs millimetres, not centimetres), stop ``stop_lead`` s early and wait
-until the wheels stand still. Only when the robot
-reports no odometry (NaN) does it fall back to the report's time-based drive,
-eq 5.3: x = (v0 + vf) t / 2 with v0 = 0, so t = 2 x / vf.
+remaining distance is what the robot covers in ``creep_lead`` s, creep the
+rest at ``creep_speed``, stop ``stop_lead`` s early and wait until the
+wheels stand still. Only when the robot reports no odometry (NaN) does it
+fall back to the report's time-based drive, eq 5.3: t = 2 x / vf.
 
-Bounded independently of the odometry it waits on (a wheel encoder may fail): while the
-wheels are commanded, odometry must gain ``no_progress_mm`` every
-``no_progress_s`` of robot time, else the drive aborts (silent or broken
-wheel encoders, slipping wheels: the odometry is their median,
-pirate.state.odometry); and the whole drive never runs longer
-than its planned profile (|distance| at speed, the last part at creep speed)
-plus ``time_margin_s``, planned at the speed the wheels really turn at
-(whole counts per PICO sample: 10 mm/s turns them at 8.3). A speed that
-turns them slower than the progress watchdog needs is refused.
-
-Clamped half round a corner (pabs.half_round) it is refused before
-anything moves: the two parts lie in different pipes.
+Bounded independently of the odometry it waits on: while the wheels are
+commanded, odometry must gain ``no_progress_mm`` every ``no_progress_s``
+of robot time, and the whole drive never runs longer than its planned
+profile plus ``time_margin_s``. Clamped half round a corner
+(pabs.half_round) it is refused before anything moves: the two parts lie
+in different pipes. The details: doc/sequencer.md, "Drive".
 """
 import math
 

@@ -1,28 +1,17 @@
 """Home (report 4.7.4.2.1, Fig 4.9): unclamp and lay the robot down.
 
-The report's Home assumes a robot clamped straight and aligned: change
-control modes, unclamp front, unclamp rear, move the front module down.
-A rotation left away from 0 (a cancel, a rotation at its limit) is
-aligned while the rear still holds the robot (the free front part turns,
-Table 4.5): otherwise the next Clamp Straight starts with the rotation at
-its limit and loops there. An aligned robot runs the report's
-steps unchanged. The wheels are stopped first: Home starts from any pose,
-a cancelled Drive included. Each unclamp waits for its open guard, so a
-part that was only partly clamped (or free) passes at once. A front module
-lifted beyond a clamp's lift (a turn's steer leaves it near 1.1 rad) is
-lowered to that lift first: lifted that far its nose met the wall as
-Bend I opened, and the unclamp stood still (twin, a mitre LEFT that found
-no opening in a straight pipe, then Home). The front is lowered last only
-while Bend I says the front part lies along the pipe: bent further than a
-straight pipe allows, it points into an opening (a turn cancelled while
-steering in), and lowering it there pried the robot across the junction
-(twin: 57-105 N on the Bend I wheel, five times the robot's weight, after
-a Home that read as unclamped); it is left lifted and the result says so.
-Half round a corner (a turn cancelled with the front turned into the new
-pipe or the middle swung round, or stopped there: pabs.half_round) Home is refused before
-anything moves: its unclamps open toward a straight pipe's guards, which
-a part bent round the corner cannot reach (twin: each stood 15 s against
-the junction's walls and aborted); re-sending the turn finishes it.
+The report's steps (change control modes, unclamp front, unclamp rear,
+move the front module down) from any pose: the wheels stopped first; a
+front module lifted beyond a clamp's lift lowered to it first; a rotation
+away from 0 aligned while the rear still holds; each unclamp waiting for
+its open guard, so a part only partly clamped (or free) passes at once.
+The front is lowered last only while it lies along the pipe: pointing
+into an opening (a turn cancelled while steering in) it is left lifted and
+the result says so. Half round a corner (:mod:`pirate.sequencer.pabs.half_round`)
+Home is refused before anything moves: its unclamps open toward a
+straight pipe's guards, which a part bent round the corner cannot reach;
+re-sending the turn finishes it. Why each of these: doc/sequencer.md,
+"Home".
 """
 import collections
 
