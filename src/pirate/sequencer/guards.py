@@ -35,7 +35,8 @@ class PairGuard(collections.namedtuple('PairGuard', 'kind outer inner')):
         """The guard as text, for feedback and logs."""
         outer, inner = ('<=', '>=') if closing else ('>=', '<=')
         return '%s %s %.2f and %s %s %.2f' % (self.outer.joint, outer, self.outer.guard,
-                                            self.inner.joint, inner, self.inner.guard)
+                                              self.inner.joint, inner, self.inner.guard)
+
 
 #: A one-joint move: setpoint (counts) until the joint passes guard (rad).
 MoveGuard = collections.namedtuple('MoveGuard', 'kind setpoint guard')

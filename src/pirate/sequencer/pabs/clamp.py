@@ -324,4 +324,3 @@ class Clamp(Pab):
         view = ctx.feed.latest()
         return ('clamped at %.3f rad (target %.3f rad), rotation %.3f rad, %d motion primitives'
                 % (view.orientation, self.target, view.angles['rotation'], len(ctx.prims.executed)))
-

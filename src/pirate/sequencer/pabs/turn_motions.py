@@ -243,8 +243,8 @@ def clamp_at_corner(ctx):
     torque(ctx.prims, **{pair.outer.joint: pair.outer.setpoint, pair.inner.joint: pair.inner.setpoint})
     inner = float(row['corner_inner_rad'])
     ctx.prims.wait_for('clamp front at the corner',
-                       lambda v: v.angles[pair.inner.joint] >= inner and clamp_state.presses_wall(guards, pair.outer,
-                                                                                                    v.efforts),
+                       lambda v: (v.angles[pair.inner.joint] >= inner
+                                  and clamp_state.presses_wall(guards, pair.outer, v.efforts)),
                        '%s >= %.2f and %s on the wall' % (pair.inner.joint, inner, pair.outer.joint))
     ctx.prims.move_module(pair.inner.joint, 0)
 
@@ -293,4 +293,4 @@ def bring_rear(ctx):
     torque(ctx.prims, bend_ii=0, bend_iii=counts, bend_iv=-counts)
     through = float(row['rear_through_rad'])
     drive_until(ctx, 'bring the rear through', float(row['pull_speed']),
-                 lambda v: v.angles['bend_iii'] <= through, 'bend_iii <= %.2f' % through, float(row['timeout_s']))
+                lambda v: v.angles['bend_iii'] <= through, 'bend_iii <= %.2f' % through, float(row['timeout_s']))
