@@ -31,7 +31,7 @@ import threading
 import pytest
 import yaml
 
-from pirate.sequencer.pabs import junction, junction_table
+from pirate.sequencer.pabs import junction
 from pirate.sim.harness import SimHarness
 from pirate.supervisory import executive as ex
 from pirate.supervisory import planner
@@ -136,7 +136,7 @@ def test_a_route_through_two_turns_and_a_t_joint_ends_at_its_target():
     with SimHarness(speedup=TEE_SPEEDUP, world='inspection_network_90', orientation=UPRIGHT + 0.15, seed=5) as h:
         robot, run = executive(plan, h, pipe_map.points['launch_pit'])
         at_sensing = {}
-        on_each_pab_state(h, junction_table.SENSED_STATES, lambda: at_sensing.__setitem__(
+        on_each_pab_state(h, junction.SENSED_STATES, lambda: at_sensing.__setitem__(
             len(run.localiser.fixes), robot_along_m(pipe_map, h.ground_truth())))
         outcome = finished(run, *run_in_thread(run))
         truth_m = robot_along_m(pipe_map, h.ground_truth())

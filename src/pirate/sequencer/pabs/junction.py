@@ -29,6 +29,7 @@ from pirate.sequencer.pabs.junction_table import (
     BRINGING_REAR, CHANGE_MODES, CLAMPING_AT_CORNER, CLAMPING_FRONT, CLAMPING_REAR, CROSSING_FRONT, CROSSING_REAR,
     DRIVING_IN, LIFTING_FRONT, MACHINE, RE_ADJUSTING, SEARCHING, STEERING_FRONT, STOPPING, STRAIGHTENING,
     SWINGING_MIDDLE, UNCLAMPING_FRONT, UNCLAMPING_REAR, Facts, first_step)
+from pirate.sequencer.pabs.junction_table import SENSED_STATES  # noqa: F401  (the PAB's: where a localiser anchors)
 from pirate.sequencer.pabs.wheels import Progress, speed_problem, stop_wheels
 from pirate.state.feed import TimedOut
 
