@@ -69,7 +69,7 @@ def panel_goals(connected):
 
 
 def command_writers(rogues, owner):
-    """Who writes the command topics: only ``owner`` may (issue 14.7).
+    """Who writes the command topics: only ``owner`` may.
 
     ``rogues``: (topic, sender) pairs heard lately from anyone else."""
     values = [('owner', owner)] + [(topic, sender) for topic, sender in rogues]
@@ -82,7 +82,7 @@ def command_writers(rogues, owner):
 
 def small_states(stale, reason, age_s, boards):
     """The Small State stream as the state node sees it: every board fresh,
-    or stale with the reason (the silent boards named, issue 14.1)."""
+    or stale with the reason (the silent boards named)."""
     values = [('age_s', '%.3f' % age_s), ('boards', boards)]
     if math.isinf(age_s):
         return Report(ERROR, 'no Small State yet (robot end running? serial link up?)', values)

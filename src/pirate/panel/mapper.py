@@ -212,7 +212,7 @@ class Mapper(object):
 
     def _on_stop(self, entry, value):
         self.mission.stop()
-        if self._pab.is_active():     # a PAB sent by any client, in either mode (issue 14.8)
+        if self._pab.is_active():     # a PAB sent by any client, in either mode
             self._pab.cancel()
             self._log('Stop: the running PAB is cancelled')
         self._control.command('stop')

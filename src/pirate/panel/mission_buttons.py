@@ -1,6 +1,6 @@
 """The panel's mission buttons: in PAB mode the M row speaks to the mission.
 
-Issue 11 point 5: the operator sets the autonomy level, confirms a step
+The operator sets the autonomy level, confirms a step
 and pauses / resumes a mission from the panel. Every nanoKONTROL2 button
 already has a job in PAB mode or in manual mode, so the map gives a button
 a second action per operation mode: the M buttons stop single joints in

@@ -13,7 +13,7 @@ Publishing policy (report 4.6):
 - :meth:`CommandArray.publish_now` bypasses the 10 Hz pacing, for the safe
   hold only (cancel must reach the wire fast).
 
-Order on the wire (issue 13.1): Setpoint and Control share one re-entrant
+Order on the wire: Setpoint and Control share one re-entrant
 ``wire_lock``; a copy is taken and published under it, so the wire sees the
 arrays in the order their values were written, whichever thread writes.
 The safe hold (:mod:`pirate.robot.hold`) takes the same lock for its whole
@@ -191,7 +191,7 @@ class Control(CommandArray):
         Modes go out at once when they change; this refresh is for a device
         that lost them: a reset Mega re-subscribes behind a host that does
         not re-send latched messages (rosserial_python holds the boards until
-        control arrives again, issue 14.3), so what the boards run matches
+        control arrives again), so what the boards run matches
         what the laptop believes within a second, whatever the host."""
         if now - self._refreshed_at < CONTROL_REFRESH_S:
             return None
@@ -255,7 +255,7 @@ def play(control, setpoint, limit):
 
     Used by the Mapper's Play button and by the Pirate Server when a goal
     starts (a goal is a request to move). Play never moves anything by
-    itself (issue 14.4): every position-mode joint with an angle sensor gets
+    itself: every position-mode joint with an angle sensor gets
     its measured angle as setpoint first (a stored target, e.g. rotation 0,
     would turn it), and keeps it until someone writes a new one.
     """

@@ -1,4 +1,4 @@
-"""The safe hold: the one definition of "no motor moves" (issue 3).
+"""The safe hold: the one definition of "no motor moves".
 
 Used by the Pirate Server when a PAB ends without success (cancel, timeout,
 lost feedback), by the manager on shutdown, and by the Mapper's Stop.
@@ -13,10 +13,10 @@ lost feedback), by the manager on shutdown, and by the Mapper's Stop.
 - Rotation (position mode only): target = its current angle, when known
   and plausible (within the rotation limit), so it stays put instead of
   aligning to 0; a reading beyond the limit is a bad sensor, not a place to
-  go (issue 14.5): the target it had is kept.
+  go: the target it had is kept.
 Cameras and LEDs are the operator's (allowed in PAB mode) and are left alone.
 
-Atomic on the wire (issue 13.1): the whole hold is written and sent under
+Atomic on the wire: the whole hold is written and sent under
 the arrays' ``wire_lock``, so no other writer's array can be sent between
 its parts or (being older) after it.
 """

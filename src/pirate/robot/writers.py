@@ -1,4 +1,4 @@
-"""One writer on the command topics (issue 14.7).
+"""One writer on the command topics.
 
 The Mega obeys whatever array reaches it last, so a second publisher on
 ``/pirate/setpoint_array`` (a forgotten ``rostopic pub``, a second manager)

@@ -3,7 +3,7 @@
 The server's idle state (report Fig 4.2: Idle Clamped / Idle Unclamped)
 must come from the robot, not from which PAB ran last: a cancel or an abort
 can leave a part anywhere between free and clamped. PABs that need to know
-where they start (issue 10) use the same classifier. Pure Python.
+where they start use the same classifier. Pure Python.
 
 Per part (front = Bend I/II, rear = Bend IV/III, SPEC 2) the classes are:
 
@@ -27,7 +27,7 @@ Per part (front = Bend I/II, rear = Bend IV/III, SPEC 2) the classes are:
   guard and the wall leaves that), or open-looking bends whose spring says
   they press on something.
 
-Why angles AND spring (report 7.2 recommends combining both; issue 10): the
+Why angles AND spring (report 7.2 recommends combining both): the
 guard angle alone called a part clamped 0.04-0.11 rad short of the wall.
 Only the outer bend's spring says the V spans the pipe: the clamp releases
 the inner bend (setpoint 0) once its guard holds, and while the V closes

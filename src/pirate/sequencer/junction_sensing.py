@@ -1,4 +1,4 @@
-"""Sensing a junction ahead from what the robot senses (report 4.7.4; issue 10.5).
+"""Sensing a junction ahead from what the robot senses (report 4.7.4).
 
 "Drive until the front part loses traction": the clamped front V presses
 its apex wheel on one wall and its two end wheels on the other; where the

@@ -62,9 +62,9 @@ class PabClient(object):
     dropped by actionlib without a word (CI: a panel press 30 ms after the
     manager started was "sent" and never ran), so :meth:`connect` waits for
     them once, off the press path, and until then a press is refused at once
-    with the reason. Waiting in the press (2 s of ROS time, stop 29) was
-    half a wall second at sim rate x2 on a busy CI machine: refused, the
-    scenario's goal never came (panel_clamp_cancel, stop 31).
+    with the reason. Waiting in the press (2 s of ROS time) is only half a
+    wall second at sim rate x2 on a busy machine: the press was refused and
+    its goal never came.
     """
 
     def __init__(self, server, pipe_diameter):
@@ -103,7 +103,7 @@ class PabClient(object):
 
     def cancel(self):
         """Cancel the running goal, whoever sent it (the server's cancel; no
-        actionlib cancel-all, which would log errors for goal-less records, issue 14.8)."""
+        actionlib cancel-all, which would log errors for goal-less records)."""
         self._server.cancel()
 
     def is_active(self):
@@ -224,7 +224,7 @@ class PirateManager(object):
         return view.angles if view is not None and self.feed.fresh() else None
 
     def _on_command(self, msg, topic):
-        """Every array on the command topics: anyone but this node is a rogue (issue 14.7)."""
+        """Every array on the command topics: anyone but this node is a rogue."""
         sender = msg._connection_header.get('callerid', '?')   # pylint: disable=protected-access
         report = self._writers.heard(topic, sender, time.monotonic())
         if report:
@@ -249,7 +249,7 @@ class PirateManager(object):
     # --- action side ------------------------------------------------------
     def _on_goal(self, handle):
         """Accept at most one goal: ``_current`` is set from acceptance until its
-        handle is terminal (issue 14.2), so no second goal is active meanwhile
+        handle is terminal, so no second goal is active meanwhile
         and every cancel of this one finds it."""
         goal = handle.get_goal()
         with self._pending:
@@ -388,7 +388,7 @@ def main():
     rospy.init_node('pirate_manager', disable_signals=True)
     try:
         manager = PirateManager()
-    except BadConfig as bad:        # a bad safety setting: refuse to start, say which (issue 14.6)
+    except BadConfig as bad:        # a bad safety setting: refuse to start, say which
         rospy.logfatal('pirate_manager not started: %s (config/sequencer.yaml)', bad)
         rospy.signal_shutdown(str(bad))
         sys.exit(2)

@@ -9,7 +9,7 @@ enforced inside the Setpoint/Control classes. Pure Python.
 Every write happens in :meth:`MotionPrimitives.writing`: under the arrays'
 wire lock and only while the goal is neither cancelled nor without
 feedback, so a Stop's safe hold is always the last thing a cancelled PAB
-puts on the wire (issue 13.1).
+puts on the wire (the hold is atomic: pirate.robot.hold).
 """
 import contextlib
 
@@ -158,7 +158,7 @@ class MotionPrimitives(object):
         """Clamp ``part`` ('front'/'rear') with guards ``kind`` (report 4.7.2.3).
 
         Bends in torque mode; when both guards hold and the outer spring
-        presses the wall (a clamp means pressing the wall, issue 10), the
+        presses the wall (a clamp means pressing the wall), the
         inner bend gets 0 to release its torque so the other part can
         still move.
         """
@@ -200,7 +200,7 @@ class MotionPrimitives(object):
         bends are held by their worms (PWM 0). With the unclamp torque left
         on they drove on past straight into a reverse V pressing the wall,
         and the rotation that follows then dragged the clamped part round
-        (twin, notes/issue-9.md). The next clamp puts them back in torque.
+        (seen in the twin). The next clamp puts them back in torque.
 
         A full unclamp ends when the part is free as the clamp state reads
         it: angles open AND no spring pushing in the clamping direction.

@@ -3,7 +3,7 @@ and the one way a physical run may differ from them: a re-adjust pass (or
 each of Table 6.3's two) run a whole number of times instead of once.
 
 The physics twin settles and slips where the real robot did not in the
-report's runs (notes/issue-9.md): a clamp on a side or a custom-clamped part
+report's runs: a clamp on a side or a custom-clamped part
 rolls by a few hundredths of a rad, so the server repeats a re-adjust pass
 until the roll is straight. Tests and benchmarks on the twin accept that
 shape, and only that shape (:func:`loop_passes`); no ROS here.

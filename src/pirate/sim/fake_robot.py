@@ -7,7 +7,7 @@ robot (many-roll sweeps, property tests); no launch file, node or rostest
 builds it. Its constants
 below were FITTED to the report's own tables (6.1, 6.2, 6.5) so that it
 reproduces them; they are not measured properties of PIRATE, and agreement
-with the report proves nothing about the robot (issue 9).
+with the report proves nothing about the robot.
 
 No ROS here: :class:`FakeRobot` takes the three command arrays exactly as
 the Mega receives them (laptop convention, SPEC 3) and produces one raw Small

@@ -1,4 +1,4 @@
-"""Start poses of the robot for a PAB, made with the robot's own motion primitives (issue 10).
+"""Start poses of the robot for a PAB, made with the robot's own motion primitives.
 
 The clamp sweep (bench/pab_clamp_sweep) and probe (bench/pab_clamp_probe)
 start Clamp Straight / Clamp Sideways from the poses the issue names;
@@ -71,8 +71,8 @@ def clamped_by(name, option=0):
 
 
 #: Pose name -> callable(harness, pipe diameter mm); raises when the pose cannot be made.
-#: The first five are the clamp sweep's (issue 10, figure 1); the clamped
-#: ones are where Home most often starts (issue 10.4).
+#: The first five are the clamp sweep's (bench/pab_clamp_sweep); the clamped
+#: ones are where Home most often starts.
 POSES = {'straight': lambda h, mm: None, 'front lifted': front_lifted, 'rear partly clamped': rear_partly_clamped,
          'both clamped': both_clamped, 'twisted': twisted,
          'clamped straight': clamped_by(CLAMP_STRAIGHT), 'clamped left': clamped_by(CLAMP_SIDEWAYS, LEFT)}

@@ -137,7 +137,7 @@ class WallBuilder(object):
         at the middle, that edge stood inside the run as a step at the
         hole's rim, square to a wheel rolling over it (twin: lying on its
         side the front V's apex wheel stalled on it 3 mm into the hole of a
-        T-joint open to that side; notes/issue-10.md, stop 32)."""
+        T-joint open to that side)."""
         half_width = radius * math.tan(math.pi / self.segments) + self.thickness / 2
         across = math.sqrt(max(0.0, 1.0 - along_run * along_run))
         nearest = max(0.0, radius * across - half_width * abs(along_run))

@@ -81,8 +81,7 @@ class RobotBuilder(object):
         The front module's shell is a capsule of the same length: it has no
         wheel and rides on the floor ahead of the front V, and a flat
         cylinder end caught the edge where two wall pieces meet (a mitre
-        bend's inner corner, a T-joint's run) and stopped the robot there
-        (issue 10.5, notes/issue-10.md)."""
+        bend's inner corner, a T-joint's run) and stopped the robot there."""
         radius = self.geo['body_radius_m']
         centre = (direction * length / 2, 0, 0)
         ET.SubElement(body, 'inertial', pos=_fmt(centre), mass='%g' % mass,

@@ -1,4 +1,4 @@
-"""The Mega's watchdog, for every simulated robot end (issue 14.8).
+"""The Mega's watchdog, for every simulated robot end.
 
 The firmware (``firmware/PirateBay/bridge.h``) drives the PICO boards only
 while it is *armed*: a setpoint array arms it; no setpoint array for

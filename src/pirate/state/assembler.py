@@ -8,9 +8,9 @@ when a simulated clock stops.
 Bad input rule (one place): a Small State from an unknown board, of the
 wrong length, or with any element outside what its sensor can produce
 (angle, rotation, wheel speed, drive duty, gravity) is dropped whole, with a
-reason the node logs once; the previous values stay (issue 14.5).
+reason the node logs once; the previous values stay.
 
-Freshness per board (issue 14.1): the Mega skips a board that does not
+Freshness per board: the Mega skips a board that does not
 answer, so the newest message of *any* board says nothing about board 22.
 Every board's last arrival is kept; one silent for ``stale_after`` (or never
 heard while others are) makes the whole state stale, naming it in
@@ -119,7 +119,7 @@ class StateAssembler(object):
 
 
 def pab_blocker(stale, silent, age):
-    """Why a state cannot steer a PAB, or None (issue 14.1).
+    """Why a state cannot steer a PAB, or None.
 
     A state is unusable when it is stale because of a board the PABs read
     (tables.PAB_BOARDS) or because nothing arrives at all; a silent camera or
@@ -134,7 +134,7 @@ def pab_blocker(stale, silent, age):
 
 
 def stale_reason(silent, age):
-    """Why a state is stale, naming the silent boards (issue 14.1)."""
+    """Why a state is stale, naming the silent boards."""
     if silent and len(silent) < len(tables.BOARDS):
         return 'board%s %s silent' % ('s' if len(silent) > 1 else '', ', '.join(str(b) for b in silent))
     return 'no Small State for %.2f s' % age

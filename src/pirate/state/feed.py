@@ -13,7 +13,7 @@ state, on cancel, and a few times a second to check two clocks:
   reported stale (a silent board, :meth:`RobotFeed.lose`) ends it at once;
 - every wait also has a wall-clock bound (``wall_factor`` x its timeout),
   so no primitive outlives its timeout because robot time stopped or
-  crawls (issue 14.6).
+  crawls.
 
 The watchdog's silence is measured on ``robot_clock`` (default: the wall
 clock): for a simulated robot, :class:`pirate.state.robot_clock.RobotClock`,
@@ -30,7 +30,7 @@ import time
 #: ``orientation`` is the rear part's roll (rad, Fig 4.7), ``odometry`` mm
 #: (NaN when the robot reports none), ``stamp`` robot time in s, ``efforts``
 #: joint name -> spring effort in mNm (None when the source has no springs;
-#: the clamp state needs them: a clamp means pressing the wall, issue 10),
+#: the clamp state needs them: a clamp means pressing the wall),
 #: ``part_odometry`` part name ('front' / 'rear') -> that part's own wheels'
 #: odometry in mm (None when the source has none; pirate.state.odometry).
 RobotView = collections.namedtuple('RobotView', 'angles orientation odometry velocity stamp efforts part_odometry',

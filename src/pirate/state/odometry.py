@@ -13,7 +13,7 @@ rolls on the wall, and a dead or silent encoder only drops out of the vote
 
 Three wheels spinning free outvote nothing: lying on its side with one V
 open, that part rests on its shells and its three wheels all count the
-setpoint (twin: 251 mm counted for 96 mm travelled, notes/issue-10.md). So
+setpoint (twin: measurements.md#twin-odometry). So
 each part's three wheels are also fused on their own, the same way
 (:meth:`WheelOdometry.part_mm`): a step that drives on one clamped part
 reads that part's travel.

@@ -1,6 +1,6 @@
 """Mission executive: runs a route's plan PAB by PAB, the operator in charge.
 
-What a gas-network inspector expects of it (issue 11):
+What a gas-network inspector expects of it:
 
 - **per-step policy**: a PAB that aborts is retried up to N times (the
   mission's ``policy``, per PAB name, default in config/supervisory.yaml),

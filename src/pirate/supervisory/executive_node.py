@@ -1,4 +1,4 @@
-"""mission_executive: the Supervisory layer's ROS edge (issue 11).
+"""mission_executive: the Supervisory layer's ROS edge.
 
 An actionlib server, ``/pirate/mission`` (pirate/MissionAction): a goal
 names a pipe map and the points to visit; the node plans the route

@@ -2,7 +2,7 @@
 
 The Supervisory layer's first brick: each goal is sent, waited for, and the
 mission stops at the first goal that does not succeed. A mission file is
-checked completely before anything moves (issue 13): unknown keys, types,
+checked completely before anything moves: unknown keys, types,
 ranges, PAB names and their options, pipe diameters without guards - each
 error with its line number, all of them at once. Pure Python; the action
 client and the printer are passed in (nodes/run_mission wires them).

@@ -1,6 +1,6 @@
 """A mission's run: distance along the route against time, each PAB marked.
 
-Issue 11 point 6. The executive publishes its estimate of where the robot
+The executive publishes its estimate of where the robot
 is along the map (``names.MISSION_ALONG_TOPIC``, mm, 5 Hz); the Pirate
 Server's goals say which PAB ran when (every goal sent, re-clamps and
 retries too); the mission's feedback says when it paused and its result

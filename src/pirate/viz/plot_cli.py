@@ -5,7 +5,7 @@
 Without --guards, the guard lines come from config/guards_<D>.yaml for the
 pipe diameter D the run's goal named, when that file exists; a run without
 one is plotted without guard lines. Prints one line per primitive marker.
-A run of a mission (issue 11) also gets RUN_mission.png: the distance along
+A run of a mission also gets RUN_mission.png: the distance along
 the route against time, each PAB marked (pirate.viz.mission_plot).
 """
 import argparse
