@@ -1,7 +1,7 @@
 // The bridge: laptop arrays in (rosserial), PICO board commands out (RS485),
 // board state back as one Small State per board.
 //
-// Safety rules (issue #5, report 7.2):
+// Safety rules (report 7.2):
 // - after power-up, a reset or any new handshake the boards get STOP until a
 //   fresh setpoint array arrives ("armed");
 // - no setpoint array for WATCHDOG_MS, or the link lost: disarm and send
@@ -10,7 +10,7 @@
 //   gate (rosserial_device.h), so a setpoint the link buffered during an
 //   outage is never applied: only one written after the host answered a
 //   time request we sent after the trip re-arms;
-// - the laptop's command state comes first (issue #14.3): after power-up
+// - the laptop's command state comes first: after power-up
 //   nothing is armed until a control array AND a limits array have
 //   arrived, so the boards never run setpoints in modes or limits the
 //   laptop did not send. Control and limits are state, not a stream: they
@@ -20,7 +20,7 @@
 //   message is dropped whole and counted, the previous values stay;
 // - a board that misses BOARD_SILENT_AFTER replies in a row is reported
 //   once per episode as a rosserial WARN log naming it, and its return as
-//   INFO (issue #14.1).
+//   INFO.
 #ifndef PIRATE_BRIDGE_H
 #define PIRATE_BRIDGE_H
 
@@ -30,7 +30,7 @@
 #include "pirate_generated.h"
 #include "rosserial_device.h"
 
-// 300 ms budget from the last valid message to every board safe (issue #5),
+// 300 ms budget from the last valid message to every board safe,
 // less the time to notice (one loop) and to send the broadcast (~1 ms),
 // less one bus reply timeout the broadcast may wait for.
 #define WATCHDOG_MS 250

@@ -203,7 +203,7 @@ static void test_setpoints_reach_boards_with_wheel_signs() {
   CHECK(states >= 9);
 }
 
-// Issue #14.3: after power-up (a Mega reset) setpoints alone never move a
+// After power-up (a Mega reset) setpoints alone never move a
 // board: the control and limits arrays must have arrived first.
 static void test_reset_holds_boards_until_control_and_limits() {
   Rig r;
@@ -326,7 +326,7 @@ static void test_tx_stop_and_silence_disarm() {
   CHECK(!r.bay.ros.configured());
 }
 
-// Issue #14.1: a board that stops answering is reported once per episode.
+// A board that stops answering is reported once per episode.
 static void test_silent_board_reported_once_per_episode() {
   Rig r;
   r.arm();

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Cancel storms log no actionlib errors (issue 14.8), over ROS.
+"""Cancel storms log no actionlib errors, over ROS.
 
 Cancels for goal ids the server never saw leave goal-less records in
 actionlib's status list; every later cancel-*all* made actionlib log

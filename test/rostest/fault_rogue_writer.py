@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A second writer on the command topics (issue 14.7), over ROS.
+"""A second writer on the command topics, over ROS.
 
 The test node itself is the rogue: it publishes setpoint arrays at 50 Hz
 (what opened the clamped front in the issue). Every wait is on a condition

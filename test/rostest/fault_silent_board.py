@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A board goes silent mid-Clamp and mid-Drive (issue 14.1), over ROS.
+"""A board goes silent mid-Clamp and mid-Drive, over ROS.
 
 The test node is the relay between the simulated robot
 (``/pirate/Small_State_raw``) and the state node (``/pirate/Small_State``);
@@ -52,7 +52,7 @@ class SilentBoardTest(unittest.TestCase):
 
     def _silence_during(self, goal, primitive, board):
         """Silence ``board`` once ``primitive`` runs (its feedback, or for a drive the
-        odometry moving: a goal's first feedback can be lost, issue 13.3)."""
+        odometry moving: a goal's first feedback can be lost)."""
         start_mm = self.states[-1].odometry
         self._send(goal)
         wait_until(lambda: any(f.primitive == primitive for f in list(self.feedback))

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Clamp Straight through the firmware-in-the-loop chain (issue 5).
+"""Clamp Straight through the firmware-in-the-loop chain.
 
 1. The simple clamp straight (upright start, 90 mm) succeeds end to end
    through serial_node <-> pty <-> native firmware <-> simulated boards.

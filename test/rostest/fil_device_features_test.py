@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """serial_node with a scripted rosserial device: the features a ros_lib
-device may use, live over a pty (issue 12 point 2).
+device may use, live over a pty.
 
 The device here is this test speaking the protocol (pirate.link codec) on
 a pseudo-terminal, in the shapes recorded from a real ros_lib device

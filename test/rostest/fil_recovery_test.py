@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
 """Recovery of the link through firmware in the loop, with both host kinds
-(issue 12 point 1, issue 14 points 1 and 3), measured on the simulated bus.
+(watchdog trip, stall, reset; board freshness and latched control), measured
+on the simulated bus.
 
 Hosts: our serial_node (a child process on the pty), and
 RosserialPythonRules, which keeps rosserial_python's rules (topics
 requested again only after 15 s without a time request, FIFO queue, no
-re-send of latched values): with the firmware of issue 5 it needed 15 s.
+re-send of latched values): it needed 15 s.
 
 - trip (the laptop pauses its setpoints 1 s: Stop), 2.5 s stall, reset
   (cable in): setpoints reach the boards again within 1 s of the fault's
@@ -15,8 +16,8 @@ re-send of latched values): with the firmware of issue 5 it needed 15 s.
 - 2 s and 10 s stalls with rosserial_python's FIFO (every queued setpoint
   replayed afterwards): no board applies a setpoint the laptop had replaced
   more than 200 ms before;
-- #14.3: control modes changed during a stall, or lost in a reset, are what
-  the boards run afterwards; #14.1: a muted board is logged once, by id.
+- control modes changed during a stall, or lost in a reset, are what
+  the boards run afterwards; a muted board is logged once, by id.
 """
 import sys
 import time
@@ -76,7 +77,7 @@ class FilRecoveryTest(unittest.TestCase):
         print('%s: first setpoint on the bus %.0f ms after the fault ended' % (what, delay * 1000))
         return delay
 
-    # -- issue 12 point 1: trip, stall, reset with both hosts --------------------
+    # -- trip, stall, reset with both hosts ---------------------------------------
     def _trip(self, host):
         self._start(host)
         self.laptop.paused.set()                 # Stop: the setpoint stream ends
@@ -109,7 +110,7 @@ class FilRecoveryTest(unittest.TestCase):
         self.assertLessEqual(self._recovery(ended, 'ours 2.5 s stall'), RECOVERY_S)
 
     def test_reset_recovers_with_our_host_in_the_laptops_modes(self):
-        # #14.3: the reset Mega forgets the control array; ours re-sends it
+        # the reset Mega forgets the control array; ours re-sends it
         self._start('ours', control_codes(TORQUE))
         reset = time.monotonic()
         self.fil.reset()
@@ -151,7 +152,7 @@ class FilRecoveryTest(unittest.TestCase):
     def test_no_stale_setpoint_after_a_10_s_stall(self):
         self._no_stale_after(10.0)
 
-    # -- issue 14 ---------------------------------------------------------------
+    # -- control and freshness across a stall ------------------------------------
     def test_control_changed_during_a_stall_is_what_the_boards_run(self):
         self._start('ours', control_codes(TORQUE))
         self.fil.stall(2.0)

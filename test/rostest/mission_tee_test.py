@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """A route through a T-joint over ROS on the physics twin, paused during
-Take T-joint and resumed (issue 11, bad input "a pause during a junction").
+Take T-joint and resumed (bad input: a pause during a junction).
 
 The pause is asked (command service) as soon as the Pirate Server's
 feedback says Take T-joint is looking for the T-joint; while paused, the

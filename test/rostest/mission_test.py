@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A mission over ROS (issue 11): refused routes, and a route paused during
+"""A mission over ROS: refused routes, and a route paused during
 its drive - by the operator panel disconnecting - and resumed from the
 panel's M 4, that still ends at its target.
 

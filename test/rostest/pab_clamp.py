@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
 """rostest: a clamp PAB (Clamp Straight / Clamp Sideways) over ROS with a
-real action client, against the physics twin (sim time), issue 10.
+real action client, against the physics twin (sim time).
 
 1. The goal ``~goal``, during which the simulator is stopped for 1 s of
    wall time (a loaded laptop; the robot is late, not silent), succeeds
    with the primitives ``~expected``, its
    ``~loops`` passes each run ``~min_passes``..``~max_passes`` times (Table
    6.2's pass, which a clamp on a side needs when it rolls the robot out of
-   the straight band, notes/issue-9.md; seq_experiment's check), and leaves
+   the straight band; seq_experiment's check), and leaves
    the rear in the straight region of Table 5.4 moved to ``~target`` (rad),
    the server Idle Clamped.
 2. A Drive is cancelled at a random instant of its run: PREEMPTED with the

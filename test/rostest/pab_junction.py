@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """rostest: Take T-joint and Take mitre bend over ROS with a real action
-client, against the physics twin (sim time), issue 10.5.
+client, against the physics twin (sim time).
 
 The goals come from the .test file (defaults: the T-joint case). A goal
 the PAB does not take (``~refused``, MITRE_BEND DOWN) is rejected at once

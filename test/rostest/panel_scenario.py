@@ -221,7 +221,7 @@ class PanelScenario(unittest.TestCase):
         # Each subscription connects to its publisher on its own thread, and
         # rospy retries a failed connection after 1, 2, 4 ... s: on a busy
         # machine the operator's topic was still unconnected 10 s into a
-        # scenario whose LEDs were (CI, stop 26). A step may only listen on
+        # scenario whose LEDs were (CI). A step may only listen on
         # a connected topic.
         self._until(lambda: all(ear.get_num_connections() > 0 for ear in self.ears), 60,
                     lambda: 'our subscribers to connect (unconnected: %s)' % self._deaf())
@@ -230,7 +230,7 @@ class PanelScenario(unittest.TestCase):
         ready.wait_robot_connected(60)
         self._until(lambda: 42 in self.leds, 30, 'the manager to send its LEDs')
         # The panel's PAB goals reach the server only once its action client
-        # has connected (before, a press is refused: CI, stop 31); the
+        # has connected (before, a press is refused); the
         # manager says so in its 1 Hz diagnostics.
         ready.wait_panel_goals_connected()
         for number, step in enumerate(steps):

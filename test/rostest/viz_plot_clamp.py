@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """A simulated clamp straight, recorded by launch/record.launch and plotted
-by plot_run, shows one marker per executed primitive (issue 6).
+by plot_run, shows one marker per executed primitive.
 
 The robot starts upright, so the report's simple clamp straight runs (Table
 6.1): move front, clamp rear, clamp front. The recorder is started through

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""RViz renders the simulated robot rolled in its pipe (issue 6).
+"""RViz renders the simulated robot rolled in its pipe.
 
 Checks, in order: the state node's joint states name exactly the URDF's
 moving joints; TF holds pipe -> base_link rolled

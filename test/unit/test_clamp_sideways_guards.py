@@ -1,5 +1,5 @@
 """The sideways guard rows of config/guards_<mm>.yaml derived again from the
-geometry (issue 10.2/10.3: derived, not measured; the report gives none).
+geometry (derived, not measured; the report gives none).
 
 Lying on a side the robot rests on its round shells (radius r), its axis r
 above the floor, R - r below the pipe's axis, where the horizontal chord is
@@ -13,7 +13,7 @@ Rolled phi off the side, the chord through the axis is
 2 sqrt(R^2 - ((R - r) cos phi)^2); the sideways clamp row holds (its
 ``within_rad``) until that chord lets the V reach the upright guards.
 
-110 mm non-nominal rows (issue 10.3, the report has none): a custom clamp
+110 mm non-nominal rows (the report has none): a custom clamp
 must hold down to lying on a side, so each is the sideways guard; the first
 lift (on a side) is the report's 90 mm one scaled by the ratio of the two
 diameters' theta; the later lift the 90 mm one scaled by the nominal lifts'

@@ -1,7 +1,7 @@
 """Clamp state from what the robot senses, and the server state after every outcome.
 
-Issue 13 finding 2: after a cancel or an abort with the robot partly or
-fully clamped the server said "Idle Unclamped". The classifier decides per
+After a cancel or an abort the robot may be partly or fully clamped;
+the server must not say "Idle Unclamped" then. The classifier decides per
 part from the bend angles (the guard rows of config/guards_<mm>.yaml) and
 the springs (the ``clamp_state`` row); the server reports it after every
 outcome, whatever the PAB meant to leave.
@@ -250,8 +250,7 @@ def test_each_part_is_judged_by_its_own_roll():
 
 
 #: Twin, 110 mm T_JOINT LEFT entered through the run, cancelled while
-#: steering and re-sent (notes/issue-10.md "Levelling only at a turn's
-#: start"): the rear's roll had drifted to 2.94 rad, 0.2 off its side, its V
+#: steering and re-sent: the rear's roll had drifted to 2.94 rad, 0.2 off its side, its V
 #: on the wall at the side's angles (the wall at -0.92 rad there).
 REAR_DRIFTED_110 = (angles(bend_iii=0.42, bend_iv=-0.88), dict(bend_iii=2.0, bend_iv=240.0), 2.94)
 

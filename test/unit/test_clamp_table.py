@@ -83,7 +83,7 @@ NON_NOMINAL = (dict(nominal_start=False, straight=False, aligned=True), [
 ])
 
 
-# Issue 10's livelock: rear nominal but not straight, rotation at its +0.7
+# The rotation-at-limit livelock: rear nominal but not straight, rotation at its +0.7
 # rad limit. The first rotate rear is clipped (no motion); the front is then
 # re-set upright, which brings the rotation back, and the rear turns again.
 LIMITED = (dict(nominal_start=True, straight=False, aligned=False), [
@@ -221,7 +221,7 @@ def test_inconsistent_machines_are_refused():
 ])
 def test_home_and_drive_paths(machine, facts, path):
     # Home is the report's Fig 4.9 when aligned, and aligns while the rear
-    # still holds when not (issue 10); a front lifted beyond a clamp's lift
+    # still holds when not; a front lifted beyond a clamp's lift
     # (a turn's steer) is lowered first, and not lowered at the end while it
     # points into an opening (Bend I past a straight pipe's); Drive is linear.
     state, walked = machine.initial, []

@@ -86,7 +86,7 @@ def test_control_change_published_at_once_and_only_on_change(arrays):
 
 def test_control_tick_resends_the_unchanged_array_once_a_second(arrays):
     """A reset Mega behind a host that does not re-send latched messages
-    gets the modes back within CONTROL_REFRESH_S (issue 14.3)."""
+    gets the modes back within CONTROL_REFRESH_S."""
     _, control, _, pubs, _ = arrays
     control.set_mode('bend_iv', 'torque')
     sent = len(pubs['control'].sent)

@@ -1,5 +1,4 @@
-"""The mission executive against the physics twin, in one process (issue 11
-"Done when"): routes planned, run by the executive on the real Pirate
+"""The mission executive against the physics twin, in one process: routes planned, run by the executive on the real Pirate
 Server (SimHarness, pirate.supervisory.harness_robot). The twin's ground
 truth is read by the test only, to judge; the executive never sees it.
 bench/mission_sweep runs the same over many start rolls with sensor noise.
@@ -96,7 +95,7 @@ def test_a_route_on_the_twin_runs_to_its_target_and_homes():
         assert not robot.clamped()                      # homed: unclamped at the target
     assert abs(start_m - pipe_map.points['pit']) < 0.01
     # 500 mm asked by odometry; the twin's wheels travel less than they count
-    # (notes/issue-11.md): the robot really moved, at least 80 % of the way.
+    # (measurements.md#twin-odometry): the robot really moved, at least 80 % of the way.
     assert 0.4 <= truth_m - start_m <= 0.52
     assert run.localiser.along_m >= pipe_map.points['target'] - 0.05
 
@@ -125,7 +124,7 @@ def test_a_route_through_a_t_joint_reanchors_where_the_front_v_met_it():
 
 
 def test_a_route_through_two_turns_and_a_t_joint_ends_at_its_target():
-    """inspection_network_90 (issue 11's network: mitre left, T-joint
+    """inspection_network_90 (mitre left, T-joint
     straight on, mitre right): the clamps each junction needs in between,
     every junction re-anchored where the twin's robot was when its PAB
     sensed it (within 50 mm), and the estimate at the target within 50 mm

@@ -1,7 +1,7 @@
-"""Issue 14: the faults the robot must survive, in-process.
+"""The faults the robot must survive, in-process.
 
-Each test names the finding it covers; each failed on the code before the
-issue (see notes/issue-14.md). The whole-stack cases run the sequencer
+Each test names the finding it covers; each failed on the code without its
+fix. The whole-stack cases run the sequencer
 against the simulated robot (SimHarness); ground truth (the model) is read
 only by the tests, to measure what the robot did.
 """
@@ -30,7 +30,7 @@ SPEEDUP = 40.0
 PANEL_CONFIG = os.path.join(paths.CONFIG_DIR, 'nanokontrol2.yaml')
 HOLD_PWM_INDICES = (1, 2, 3, 6, 7)     # front tilt, Bend I-IV (Table 4.1/4.2)
 WHEELS = 11
-#: Issue 14 goal: a silent board detected within 300 ms (plus the Mega cycle
+#: Goal: a silent board detected within 300 ms (plus the Mega cycle
 #: in which it should have answered, 0.1 s, and one poll) - robot seconds.
 SILENT_DETECTION_ROBOT_S = 0.3 + 0.1 + 0.1
 

@@ -1,4 +1,4 @@
-"""Issue 14.2: a cancel is never lost, one active goal always (manager_node).
+"""A cancel is never lost, one active goal always (manager_node).
 
 The manager's own ``_on_goal`` / ``_on_cancel`` / ``_worker`` run in-process
 against the real Pirate Server over the simulated robot (SimHarness), with

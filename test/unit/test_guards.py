@@ -111,7 +111,7 @@ def test_unknown_diameter_has_no_guards(book, mm):
 
 @pytest.mark.parametrize('kind', ['clamp_front_custom_first', 'clamp_front_custom', 'clamp_rear_custom'])
 def test_a_missing_custom_clamp_row_is_refused_with_its_name(book, kind):
-    # 110 mm has derived custom rows since issue 10.3 (test_clamp_sideways_guards.py); a
+    # 110 mm has derived custom rows (test_clamp_sideways_guards.py); a
     # table without one still names what is missing.
     tables, common = load_files()
     table = {key: value for key, value in tables[110].items() if key != kind}

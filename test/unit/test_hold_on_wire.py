@@ -1,4 +1,4 @@
-"""Issue 13.1: the safe hold is atomic on the wire.
+"""The safe hold is atomic on the wire.
 
 Whatever is in flight (a primitive switching modes, the 10 Hz tick, a Stop
 from the panel thread), after a Stop, cancel, abort or shutdown the last

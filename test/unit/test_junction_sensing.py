@@ -1,4 +1,4 @@
-"""Sensing a junction from what the robot senses (issue 10.5), on recorded values.
+"""Sensing a junction from what the robot senses, on recorded values.
 
 The recordings are the physics twin's Small State as the Pirate State node
 turns it into SI units (RobotView), one per Mega cycle, of a robot clamped
@@ -123,7 +123,7 @@ STRAIGHT = (
     (24.8, 392.0, -0.999, 244.1), (24.9, 392.0, -0.997, 247.1), (25.0, 392.0, -0.997, 247.1),
 )
 
-#: straight_90, clamped sideways LEFT (pi, twin3's sideways clamp): no junction;
+#: straight_90, clamped sideways LEFT (pi, the clamp_sideways row): no junction;
 #: Bend I creeps closed while driving, more than close_rad over the drive.
 SIDEWAYS_LEFT = (
     (28.2, 0.0, -0.601, 237.0), (28.3, 4.5, -0.604, 233.0), (28.4, 9.0, -0.607, 231.0),
@@ -154,7 +154,7 @@ SIDEWAYS_LEFT = (
 
 
 #: tee_run_right_90 (open to the right), clamped sideways RIGHT after a
-#: release at 30 deg (twin of stop 32, the T-joint's rim cut clear of the
+#: release at 30 deg (twin with the T-joint's rim cut clear of the
 #: run): T_JOINT STRAIGHT's search, then its stop. The V creeps closed as the
 #: robot rolls toward its side (-0.603 to -0.735 rad over 300 mm, 0.042 rad
 #: within 30 mm at 133-163 mm); the apex wheel (45 deg below the side, where
@@ -317,7 +317,7 @@ def test_in_110_mm_on_a_side_the_hole_is_sensed_at_its_rim_and_not_where_the_v_c
     """close_window_mm 15 (config/guards_110.yaml): sensed within 20 mm of the
     rim; with the former 30 mm the creep right after the start read as the
     hole, and the robot crossed 300 mm short of the T-joint (4 of 14 approach
-    rolls in bench/pab_junction_sweep, notes/issue-10.md stop 33)."""
+    rolls: measurements.md#junction-sensing-window)."""
     sensed, _ = first_sensed(SIDEWAYS_LEFT_TEE_110, GUARDS_110)
     assert sensed is not None and 'closed' in sensed.why
     assert SIDEWAYS_LEFT_TEE_110_RIM_MM <= sensed.odometry <= SIDEWAYS_LEFT_TEE_110_RIM_MM + 20.0, sensed

@@ -34,7 +34,7 @@ def test_robot_argument_selects_a_robot_end(robot):
     assert expected in nodes.stdout
 
 
-# --- issue 13 finding 6: every argument documented, values checked ---------
+# --- every argument documented, values checked -----------------------------
 
 def _user_args(path):
     """(name, attributes) of every <arg> a user can set (those with a default)."""

@@ -322,7 +322,7 @@ def test_tick_follows_modes_changed_by_someone_else(rig):
     assert rig.leds[35] is True
 
 
-# --- issue 13: every PAB from the panel, refusals shown, the panel's authority ---
+# --- every PAB from the panel, refusals shown, the panel's authority ---
 
 PAB_BUTTONS = {   # channel: (PAB code, distance mm, speed mm/s, option code), config/nanokontrol2.yaml
     59: (0, 0.0, 0.0, 0),        # track >: Clamp Straight

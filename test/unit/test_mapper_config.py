@@ -41,7 +41,7 @@ SPEC5 = {
     67: ('calibrate', 'bend_ii', (M,)), 68: ('calibrate', 'bend_i', (M,)),
     69: ('calibrate', 'front_tilt', (M,)), 70: ('calibrate', 'camera_tilt', (M,)),
 }
-# Free in Table E.2, PAB buttons here (issue 13: every PAB from the panel).
+# Free in Table E.2, PAB buttons here (every PAB from the panel).
 SPEC5.update({channel: ('pab', None, (P,)) for channel in (44, 46, 48, 61, 62, 64, 71)})
 
 

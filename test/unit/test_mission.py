@@ -1,4 +1,4 @@
-"""Missions are checked before anything moves (issue 13 finding 5).
+"""Missions are checked before anything moves.
 
 Each case is a mission text and the words its error must carry, with the
 line number; the shipped missions pass; the runner prints the trace from

@@ -1,4 +1,4 @@
-"""The mission plot (issue 11 point 6) from a recorded run: distance along
+"""The mission plot from a recorded run: distance along
 the route against time, each PAB marked, the pause and the end.
 
 test/data/missions/straight_90_pause.bag was recorded by launch/record.launch

@@ -1,4 +1,4 @@
-"""Clamp Sideways (issue 10.2): the Clamp Straight machine at another target.
+"""Clamp Sideways: the Clamp Straight machine at another target.
 
 On the kinematic robot (report Table 4.5 only, no physics): from start
 rolls every 15 degrees of the working range 0..pi, Clamp Sideways LEFT (pi)

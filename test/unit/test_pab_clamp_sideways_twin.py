@@ -1,11 +1,11 @@
-"""Clamp Sideways in the physics twin (issue 10.2), 90 and 110 mm.
+"""Clamp Sideways in the physics twin, 90 and 110 mm.
 
 The robot lying on the target side clamps there with the report's simple
 sequence (move front, clamp rear, clamp front; the full clamp judged by the
 sideways guards derived from the pipe's chord, config/guards_<mm>.yaml),
 followed by Table 6.2's re-adjust pass when the clamps roll it out of the
 +-0.05 rad straight band (on the round shells a clamp on a side rolls the
-twin by 0.04-0.06 rad, notes/issue-9.md), and ends pressing the wall with
+twin by 0.04-0.06 rad), and ends pressing the wall with
 both V's (the apex wheels in contact, ground truth read by the test only)
 at the target roll; the server then says Idle Clamped, so Drive is accepted.
 Starts away from the target are covered on the kinematic robot.
@@ -40,7 +40,7 @@ def test_simple_clamp_sideways_on_the_twin(mm, option, target):
 
 @pytest.mark.parametrize('roll', [0.0, math.pi], ids=['right side', 'left side'])
 def test_non_nominal_clamp_straight_in_110_mm_on_the_twin(roll):
-    """Issue 10.3: from lying on a side in 110 mm (the report built this only
+    """From lying on a side in 110 mm (the report built this only
     in 90 mm) Clamp Straight runs with the derived custom clamp and lift
     guards of config/guards_110.yaml and ends clamped straight, both V's on
     the wall (ground truth)."""

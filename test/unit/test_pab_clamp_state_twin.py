@@ -1,4 +1,4 @@
-"""Issue 10.1 against the physics twin: "clamped" means pressing the wall.
+"""Against the physics twin: "clamped" means pressing the wall.
 
 A Clamp Straight cancelled after the rear outer bend passed its guard but
 before the V reached the wall left, on main, angles that read as clamped:

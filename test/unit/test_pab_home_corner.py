@@ -226,7 +226,7 @@ def steering_hint(cancel_s, mm, after_state=junction.STEERING_FRONT, moved_mm=0.
 def test_an_unclamp_blocked_after_a_turn_stopped_steering_in_names_the_way_on():
     """No bend is round the corner yet (Bend II below steered_rad), so only
     the last goal tells: the unclamp can block above home_after_steering
-    (stop 31: slow at 0.66-0.73 rad in 110 mm), and the re-sent turn finishes."""
+    (slow at 0.66-0.73 rad in 110 mm: measurements.md#home-after-steering), and the re-sent turn finishes."""
     hint = steering_hint(36.5, 110)
     assert 'the last goal, Taking Mitre bend, stopped steering the front into an opening toward the RIGHT' in hint
     assert '(front tilt 0.90 rad)' in hint

@@ -1,4 +1,4 @@
-"""Home from any pose, in the physics twin (issue 10.4).
+"""Home from any pose, in the physics twin.
 
 Clamped straight, clamped sideways, partly clamped (a clamp cancelled
 half way), front lifted only, a turn's steer left where it found no

@@ -1,4 +1,4 @@
-"""A turn's steering levels the front part and backs off an edge its front stands at (issue 10.5).
+"""A turn's steering levels the front part and backs off an edge its front stands at.
 
 A turn's start rotates the open front part onto the side's roll (110 mm,
 the row's ``level_front``; a resumed steering does not). The steering then
@@ -9,8 +9,7 @@ of odometry and steers on, within the steering's own time bound. Here a
 small kinematic stand-in replaces the twin: the wheels move the odometry
 at the set speed except where an edge stops them, and the front turns
 round once it reaches the edge after backing off (as the twin's 110 mm
-T-joint entered through its run did, notes/issue-10.md "Backing off an
-edge"). The twin itself is swept by bench/pab_junction_sweep.
+T-joint entered through its run did: measurements.md#turn-back-off). The twin itself is swept by bench/pab_junction_sweep.
 """
 import collections
 import math

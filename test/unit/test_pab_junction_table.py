@@ -1,4 +1,4 @@
-"""Take T-joint / Take mitre bend (issue 10.5): the one table, and every refusal.
+"""Take T-joint / Take mitre bend: the one table, and every refusal.
 
 - the table prints, every state is reachable, and exhaustively over its
   facts at most one transition fires per state, exactly one when the

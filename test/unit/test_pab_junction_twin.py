@@ -1,4 +1,4 @@
-"""Take T-joint and Take mitre bend in the physics twin (issue 10.5), in process (SimHarness).
+"""Take T-joint and Take mitre bend in the physics twin, in process (SimHarness).
 
 Clamped straight before a T-joint whose open side is above the robot
 (config/worlds/tee_run_up_90.yaml), T_JOINT STRAIGHT senses the hole from
@@ -116,7 +116,7 @@ def test_t_joint_straight_on_lying_toward_its_open_side_crosses_it(side, mm):
     the hole and each part crosses it open; the robot ends past it on the
     same side. 110 mm: a 30 mm close window read the V's creep as the hole
     20 mm after the start, and at 90 mm's rear press the rear V's apex wheel
-    dropped into the longer hole (notes/issue-10.md stop 33)."""
+    dropped into the longer hole: measurements.md#cross-press-sideways)."""
     option, roll, _ = SIDES[side]
     world = network.load(network.world_path('tee_run_%s_%d' % (side, mm)))
     tee = world.pieces[1]

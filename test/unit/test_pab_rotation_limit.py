@@ -1,4 +1,4 @@
-"""Issue 10.1, the rotation-at-limit livelock, on a kinematic robot.
+"""The rotation-at-limit livelock, on a kinematic robot.
 
 The start: rear nominal but not straight, the rotation at its +0.7 rad
 limit, front lifted. On main Clamp Straight looped unclamp rear -> rotate

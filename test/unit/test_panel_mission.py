@@ -1,5 +1,5 @@
-"""The panel's mission controls (issue 11 point 5, bad input "a panel that
-disconnects mid-mission"): the map's mission buttons, their LEDs, Stop,
+"""The panel's mission controls (bad input: a panel that
+disconnects mid-mission): the map's mission buttons, their LEDs, Stop,
 the panel's presence, and the Mapper driving a real mission executive.
 
 No ROS: the Mapper with real Setpoint/Control/Limit objects (test_mapper's

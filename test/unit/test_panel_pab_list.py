@@ -1,4 +1,4 @@
-"""The virtual panel lists every PAB button and says which the server does not take yet (issue 10.7)."""
+"""The virtual panel lists every PAB button and says which the server does not take."""
 import os
 
 import pygame

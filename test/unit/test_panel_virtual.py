@@ -185,7 +185,7 @@ def _label_pixels(panel, channel):
 
 
 def test_in_pab_mode_the_m_row_reads_its_mission_jobs(panel):
-    """Issue 11.6: the M buttons stop joints in manual mode and control the
+    """The M buttons stop joints in manual mode and control the
     mission in PAB mode (config/nanokontrol2.yaml mission_buttons); the
     virtual panel labels them for the mode in force."""
     from pirate import paths

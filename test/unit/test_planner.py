@@ -120,8 +120,8 @@ def tee_run(side):
 
 
 def test_straight_through_a_tee_open_upward_clamps_with_the_front_v_facing_it():
-    """The PAB senses the T-joint only with the V's apex toward the hole
-    (notes/issue-10.md): upright below a hole above."""
+    """The PAB senses the T-joint only with the V's apex toward the hole:
+    upright below a hole above."""
     assert pabs(run(tee_run('up'), 'a', 'b'))[:3] == [('CLAMP_STRAIGHT', None), ('DRIVE', None),
                                                        ('T_JOINT', 'STRAIGHT')]
 
@@ -379,7 +379,7 @@ def test_a_route_the_server_cannot_run_yet_is_refused_before_anything_moves():
 
 
 def test_a_turn_the_junction_pab_does_not_take_yet_is_refused_by_the_real_server_table():
-    """The junction PAB takes a mitre left / right but not up / down yet (issue 10):
+    """The junction PAB takes a mitre left / right but not up / down:
     the planner asks the server's own table with the direction, so a route
     through a bend down stops here, not at the bend; one through a bend left passes."""
     bend_down = [dict(BEND_LEFT[1], turn='down') if p['type'] == 'mitre' else p for p in BEND_LEFT]

@@ -122,7 +122,7 @@ def test_mismatched_lengths_are_refused(tmp_path):
         plot.plot_run(run, str(tmp_path / 'x.png'))
 
 
-# --- issue 13: the plot tells the whole run ---------------------------------
+# --- the plot tells the whole run ------------------------------------------
 
 def test_labels_of_close_transitions_do_not_overlap():
     times = [0.0, 0.1, 0.2, 5.0, 5.05, 10.0]

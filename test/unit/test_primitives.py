@@ -271,7 +271,7 @@ def test_drive_above_limit_refused(rig, mm_s):
     assert prims.setpoint.get('wheels') == 0 and wires['control'].sent == []
 
 
-# --- safe hold (pirate.robot.hold, issue 3: bends/front PWM 0, wheels 0, rotation held) ---
+# --- safe hold (pirate.robot.hold: bends/front PWM 0, wheels 0, rotation held) ---
 
 def test_safe_hold_stops_everything_and_holds_rotation(rig):
     prims, feed, wires = rig
@@ -316,7 +316,7 @@ def test_safe_hold_zeroes_before_the_mode_changes(rig):
 
 @pytest.mark.parametrize('reading', [-0.9, 15.36, float('nan')])
 def test_safe_hold_keeps_the_rotation_target_on_an_implausible_reading(rig, reading):
-    """Issue 14.5: a reading beyond +-0.7 rad is a bad sensor, not a place to go.
+    """A reading beyond +-0.7 rad is a bad sensor, not a place to go.
 
     (It used to be saturated: a bogus 15.36 rad drove the rotation to +0.7.)
     """
@@ -351,7 +351,7 @@ def test_follow_ends_with_its_own_timeout_when_a_state_lands_on_the_deadline(rig
     """A state stamped exactly at the end of ``follow``'s time ends it with
     TimedOut naming the primitive and its time, rather than a zero-length
     wait for one more state (which the real feed reported as a wall-clock
-    timeout of 0.0 s: a swing round a corner that stalled, notes/issue-10.md)."""
+    timeout of 0.0 s: a swing round a corner that stalled)."""
     prims, feed, _ = rig
     feed.states = [view()._replace(stamp=stamp) for stamp in (1.5, 2.0)]
     acted = []

@@ -1,5 +1,4 @@
-"""The host's ROS edge without a master or a port (issue 12 points 2-3,
-issue 14.3): buffer sizes refused, renegotiated types recreated,
+"""The host's ROS edge without a master or a port: buffer sizes refused, renegotiated types recreated,
 parameters served, the laptop's latched state re-sent, version mismatch on
 diagnostics. The port is a fake that records what was written."""
 import struct
@@ -66,7 +65,7 @@ def test_message_larger_than_the_device_buffer_is_refused(host):
 
 
 def test_frames_up_to_the_largest_announced_buffer_are_taken(host):
-    # issue 12 point 3: frames over 512 bytes were dropped whatever the device announced
+    # frames over 512 bytes must not be dropped when the device announced more
     announce(host, protocol.ID_PUBLISHER, 100, '/big', String, size=2048)
     payload = struct.pack('<I', 1500) + b'x' * 1500
     assert host.parser.feed(protocol.encode(100, payload)) == [Frame(100, payload)]

@@ -91,7 +91,7 @@ def test_clamp_sideways_without_a_side(rig, option):
 
 def test_clamp_sideways_non_nominal_in_110_mm_is_accepted(rig):
     # Upright is 90 degrees from either side: non-nominal; the 110 mm guards
-    # have derived custom clamps (issue 10.3; the twin clamps from there).
+    # have derived custom clamps (the twin clamps from there).
     server, feed, _, _, _ = rig
     feed.push(state())
     assert server.reserve(Goal(CLAMP_SIDEWAYS, pipe_diameter=110, option=1)) is None
@@ -110,7 +110,7 @@ def test_drive_while_unclamped(rig):
 
 
 def test_drive_refused_with_clamp_angles_short_of_the_wall(rig):
-    # Issue 10: a cancel between the clamp guard and the wall leaves the
+    # A cancel between the clamp guard and the wall leaves the
     # angles past the guards with the outer springs slack; that is no clamp.
     server, feed, _, _, _ = rig
     feed.push(state(efforts=dict(bend_iii=-194.0, bend_iv=-34.0), **CLAMPED))

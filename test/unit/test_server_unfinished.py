@@ -1,4 +1,4 @@
-"""What a goal leaves unfinished, and how it ended, outlive a restarted manager (issue 10).
+"""What a goal leaves unfinished, and how it ended, outlive a restarted manager.
 
 A turn cancelled once its rear came round leaves the server a record
 (:class:`pirate.sequencer.pabs.junction.PastCorner`) that nothing sensed

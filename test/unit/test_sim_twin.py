@@ -1,4 +1,4 @@
-"""The physics twin (issue 9, points 2-4): generated models load, the
+"""The physics twin: generated models load, the
 robot matches the module table, the pipe is hollow with a real mitre
 corner and an open T side, each board's modes act as the boards do, the
 sensors are raw and quantised, gravity settles the robot, and a clamp
@@ -298,8 +298,8 @@ def test_the_clamped_parts_roll_while_the_other_turns_does_not_depend_on_the_ste
     MuJoCo's implicit step applied it beyond the clip, more the longer the
     step: here the rear rolled -0.055 rad at 1 ms and -0.098 at 2 ms
     (bench/sim_twin_figures item 5: -0.124 / -0.318, and -0.085 at
-    0.25 ms); as the joint's damping -0.046 / -0.033 (notes/issue-9.md,
-    branch twin5)."""
+    0.25 ms); as the joint's damping -0.046 / -0.033
+    (measurements.md#twin-rotation-damping)."""
     rolled = [_rear_roll_while_the_front_turns(step) for step in (0.001, 0.002)]
     assert rolled[0] == pytest.approx(rolled[1], abs=0.02), rolled
     assert abs(rolled[0]) < 0.1, rolled

@@ -1,5 +1,5 @@
 """The report's experiments: the unchanged sequencer against the physics
-twin, in one process (SimHarness, issue 9 point 5): the simple clamp
+twin, in one process (SimHarness): the simple clamp
 straight (Table 6.1, 90 and 110 mm) and test mission (Table 6.4) run to
 success with the report's primitive sequences, the nominal re-adjust
 (Table 6.2) and the non-nominal (Table 6.3, both sides) with a re-adjust
@@ -60,8 +60,7 @@ def test_simple_clamp_straight_on_the_twin(world):
 def test_nominal_re_adjust_on_the_twin():
     """Start at 1.45 rad (Table 6.2): the report's nine primitives, then
     the same re-adjust pass again while the roll is outside the straight
-    tolerance (the twin's clamped V tilts when the other part unclamps,
-    notes/issue-9.md), ending clamped straight."""
+    tolerance (the twin's clamped V tilts when the other part unclamps), ending clamped straight."""
     with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=1.45) as h:
         reason, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT))
         assert_ended(reason, outcome)
@@ -75,7 +74,7 @@ def test_non_nominal_on_the_twin(orientation):
     custom re-adjust pass run once or more, each pass of any shape Table
     D.1 gives (custom or full clamps, turn or align, as the facts decide),
     then Table 6.2's last pass (the twin: 2-3 passes; the custom-clamped
-    front rolls while the rear turns, notes/issue-9.md),
+    front rolls while the rear turns),
     ending clamped straight."""
     with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=orientation) as h:
         reason, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT), bound=60.0)
@@ -120,7 +119,7 @@ def test_cancel_mid_clamp_leaves_the_safe_hold_and_the_pose_held():
 
 def test_a_partial_unclamp_leaves_an_open_v_and_the_clamped_part_holds_its_roll():
     """Report 4.7.2.5: a partial unclamp leaves "a very open V". Found in
-    the twin (notes/issue-9.md): with the unclamp torque left on after the
+    the twin: with the unclamp torque left on after the
     guard the bends drove on past straight into a reverse V pressing the
     wall (bend I +0.28, bend II -0.40 rad); turning that part then wedged
     (here: the rotate to -0.7 rad timed out) or, lying half on a side,

@@ -1,4 +1,4 @@
-"""Issue 14.8: the simulated robot has the firmware's Mega watchdog.
+"""The simulated robot has the firmware's Mega watchdog.
 
 Before, the simulated robot kept executing after the manager died, unlike
 the firmware (firmware/PirateBay/bridge.h: no setpoint array for 250 ms ->

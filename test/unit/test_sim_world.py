@@ -1,5 +1,5 @@
 """World files: the shipped worlds load and lay out as drawn; every bad
-file is refused with the file, the entry and the reason (issue 9, point 1)."""
+file is refused with the file, the entry and the reason."""
 import math
 import os
 

@@ -1,4 +1,4 @@
-"""The robot's odometry: the median of the drive boards (pirate.state.odometry, issue 9).
+"""The robot's odometry: the median of the drive boards (pirate.state.odometry).
 
 test/data/odometry/straight_90_clamp_drive_300.csv was recorded with
 ``python3 bench/sim_twin_odometry 300 --record FILE`` (the twin, straight_90,
@@ -94,7 +94,7 @@ def test_nothing_heard_is_zero_travel():
 
 def test_each_part_is_fused_from_its_own_three_wheels():
     """Lying on a side with the rear V open, the rear rests on its shells and
-    its three wheels spin free (twin: 251 mm counted for 96 mm, notes/issue-10.md):
+    its three wheels spin free (twin: measurements.md#twin-odometry):
     the median of six then lies between the parts; each part's own median is its wheels' travel."""
     odometry = WheelOdometry()
     rolling, spinning = [40 * k for k in range(6)], [100 * k for k in range(6)]

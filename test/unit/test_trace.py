@@ -1,4 +1,4 @@
-"""The trace of a goal (issue 13 finding 3): what ran, with robot times and outcome.
+"""The trace of a goal: what ran, with robot times and outcome.
 
 Feedback may be lost; the result carries the trace. Here: the server
 records every primitive start and end from the robot's clock, the running

@@ -1,5 +1,5 @@
 """The 110 mm turn rows of config/guards_110.yaml derived again from the 90 mm
-ones (measured in the twin) and the geometry (issue 10.5: derived, not
+ones (measured in the twin) and the geometry (derived, not
 measured; checked in the twin by test_pab_junction_twin.py).
 
 The angles of a turn are set by the 90 deg corner and the joints' stops,

@@ -1,4 +1,4 @@
-"""A turn clamps each part with the full guards of that part's own roll (issue 10.1).
+"""A turn clamps each part with the full guards of that part's own roll.
 
 The rear's roll is the IMU's; the front's is the rear's less the rotation
 (Table 4.5). Near the edge of the sideways band (``clamp_sideways``

@@ -1,4 +1,4 @@
-"""Issue 14.7: a second publisher on the command topics is detected (pure part).
+"""A second publisher on the command topics is detected (pure part).
 
 The ROS wiring (manager_node._on_command: cancel, hold, STOP, /diagnostics)
 is covered by test/rostest/fault_rogue_writer.test.

@@ -17,8 +17,8 @@ publishers and subscribers (a topic announced again with another type is
 recreated), services both ways (:mod:`.service_bridge`), parameters from
 the parameter server, logs at their level, time. A message larger than the
 buffer the device announced for that topic is refused with an error, as
-rosserial_python does. The laptop's command state survives the link
-(issue #14.3): the latest message of every *latched* publisher the device
+rosserial_python does. The laptop's command state survives the link:
+the latest message of every *latched* publisher the device
 subscribes to is re-sent whenever the link comes up and whenever the
 device announces that subscriber again (after a reset), so control modes
 reach the boards before any setpoint.

@@ -13,7 +13,7 @@ toward its clamp side and its spring unloads. Either one is the junction:
   ``close_window_mm`` of odometry: at a T-joint's hole it closed 0.048 rad
   within 10 mm (twin, 90 mm); clamped upright in a straight pipe it held
   within 0.003 rad, but clamped on a side it crept 0.066 rad closed over
-  250 mm of driving (twin, after twin3's sideways clamp), so the angle is
+  250 mm of driving (twin, clamp_sideways row), so the angle is
   compared with where it was a short way back, not at the start.
 
 One of them must hold for ``samples`` consecutive robot states, so one
