@@ -4,8 +4,8 @@
 Cancels for goal ids the server never saw leave goal-less records in
 actionlib's status list; every later cancel-*all* made actionlib log
 "Attempt to get a goal id on an uninitialized ServerGoalHandle" once per
-record (480 lines for 5 Stops here before the fix). The panel's Stop now
-cancels only its own goal. Every wait is on a condition with a deadline.
+record (480 lines for 5 Stops). The panel's Stop therefore cancels only
+its own goal. Every wait is on a condition with a deadline.
 """
 import unittest
 

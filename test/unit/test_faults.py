@@ -285,7 +285,7 @@ def test_a_drive_the_wheels_cannot_do_is_refused(speed):
 def test_a_drive_slower_than_the_progress_watchdog_needs_is_refused(speed):
     """A Drive at 5 mm/s turns the wheels at one count per PICO sample, 4.15 mm/s,
     slower than the watchdog's 2 mm per 0.4 s: it was accepted and then aborted
-    with "no odometry progress" while doing what it was asked (twin, turnspeed)."""
+    with "no odometry progress" while doing what it was asked (twin)."""
     guards = GuardBook(*load_files()).for_diameter(90)
     goal = type('Goal', (), dict(name=DRIVE, pipe_diameter=90, distance=50.0, speed=speed, option=0))
     reason = Drive().check(goal, CLAMPED, guards)

@@ -368,9 +368,9 @@ def test_run_mission_route_refuses_a_route_before_sending_anything(capsys):
     assert "no point 'nowhere'" in capsys.readouterr().err
 
 
-def test_a_route_the_server_cannot_run_yet_is_refused_before_anything_moves():
-    """Today's server has no junction PABs: a route through a bend is refused
-    at its junction step, by name; once the PAB exists the same route passes."""
+def test_a_route_the_server_cannot_run_is_refused_before_anything_moves():
+    """A server without the junction PAB refuses a route through a bend at its
+    junction step, by name; a server with it passes the same route."""
     route_plan = run(world(BEND_LEFT, {'pit': 300, 'target': 3000}), 'pit', 'target')
     with pytest.raises(planner.PlanError, match=r"step 3 \(MITRE_BEND LEFT, mitre_1\): the Pirate Server cannot "
                                                 r"run MITRE_BEND LEFT yet"):
@@ -378,7 +378,7 @@ def test_a_route_the_server_cannot_run_yet_is_refused_before_anything_moves():
     planner.check_runnable(route_plan, built=lambda pab, option=None: True)
 
 
-def test_a_turn_the_junction_pab_does_not_take_yet_is_refused_by_the_real_server_table():
+def test_a_turn_the_junction_pab_does_not_take_is_refused_by_the_real_server_table():
     """The junction PAB takes a mitre left / right but not up / down:
     the planner asks the server's own table with the direction, so a route
     through a bend down stops here, not at the bend; one through a bend left passes."""

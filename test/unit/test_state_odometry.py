@@ -4,7 +4,7 @@ test/data/odometry/straight_90_clamp_drive_300.csv was recorded with
 ``python3 bench/sim_twin_odometry 300 --record FILE`` (the twin, straight_90,
 upright: Clamp Straight, then Drive 300 mm; per Mega cycle the raw odometry
 count of each drive board and the true travel of the robot's middle). In
-it Bend I's wheel (board 22, the odometry board before the fix) is propped
+it Bend I's wheel (board 22, once the only odometry board) is propped
 off the floor by the front module's shell and counts what the robot did
 not travel.
 """
