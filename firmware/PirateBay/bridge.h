@@ -32,7 +32,8 @@
 
 // 300 ms budget from the last valid message to every board safe,
 // less the time to notice (one loop) and to send the broadcast (~1 ms),
-// less one bus reply timeout the broadcast may wait for.
+// less one bus reply timeout the broadcast may wait for
+// (measurements.md#link-command-loss).
 #define WATCHDOG_MS 250
 #define BOARD_SILENT_AFTER 2       // consecutive missed replies = a silent board
 #define CYCLE_MS 100               // refresh of all nine boards, ~10 Hz (SPEC 2)

@@ -37,7 +37,8 @@ wall contact; clamped: outer 241 mNm). The clamp threshold sits between
 what a spring carries without the wall and the clamp's torque: bends held
 by their worms carry the robot's weight at 100-130 mNm (twin), and a clamp
 judged at 60 mNm was a false success (bench/pab_clamp_sweep: retried after
-a cancel, "clamped" with the rear apex off the wall). The worm gears keep the spring's
+a cancel, "clamped" with the rear apex off the wall;
+measurements.md#clamp-spring-thresholds). The worm gears keep the spring's
 deflection when the motors stop, so a clamp held at PWM 0 still reads as
 pressing. Only the clamping direction counts: an unclamp drives the bends
 against their straight stop, which loads the springs the other way.

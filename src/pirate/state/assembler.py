@@ -28,7 +28,7 @@ from pirate.robot import tables, units
 from pirate.state.odometry import WheelOdometry
 
 #: Newest data older than this (s, monotonic) makes the state stale: three
-#: Mega cycles of 0.1 s missed.
+#: Mega cycles of 0.1 s missed; measurements.md#silent-board.
 STALE_AFTER_S = 0.3
 #: Largest joint angle an AS5055 reports (half a turn either way).
 ANGLE_MAX_COUNTS = 2048
