@@ -27,6 +27,7 @@ HISTORY = [
     (re.compile(r'\bnotes/'), 'the development notes'),
     (re.compile(r'\b[Ss]top \d+\b(?![.\d])(?![ \t]*' + _UNITS + ')'), 'a work period'),
     (re.compile(r'\b(?:[Tt]his|[Ll]ast|[Pp]revious) stop\b(?! bit)'), 'a work period'),
+    (re.compile(r'(?<![A-Za-z])(?:stop|issue)_?\d+'), 'a work period in a name'),
     (re.compile(r'\b(?:twin[2-9]|clamp2|turns2|super2|turnspeed|turnresume|teebranch)\b'), 'a merged branch'),
     (re.compile(r'\bbranch(?:es)? [`\'"]\w+[`\'"]'), 'a merged branch'),
     (re.compile(r'\bhelpers? [`\'"]\w+[`\'"]'), 'a helper of the work'),
@@ -97,6 +98,8 @@ def pointers(paths):
     '# see notes/issue-10.md',
     'Waiting in the press (2 s of ROS time, stop 29) was',
     "'before stop 29': _before_stop_29,",
+    'def _before_stop_29(root):',
+    'def test_issue10_livelock():',
     'measured in this stop',
     '(notes of the lead, after stop 22)',
     "Merge branch 'twin3' into main",
@@ -121,6 +124,7 @@ def test_the_history_words_are_found(line):
     'boards that stop answering (the Mega skips them)',
     'So Play after Stop never moves a joint by itself',
     '| STOP 8 | every board stops |',
+    "COMMAND_CODES = {'stop': 8, 'single_stop': 9}",
     'colour: "#14a3ff"',
 ])
 def test_product_words_are_not_history(line):
