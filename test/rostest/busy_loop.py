@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Load for the trace rostest: keep one core busy until killed (roslaunch ends it).
 
-Primitives can go missing from the feedback on a loaded machine; the trace in the result must not. Pure CPU, no ROS traffic.
+Primitives can go missing from the feedback on a loaded machine; the trace
+in the result must not. Pure CPU, no ROS traffic.
 """
 import time
 

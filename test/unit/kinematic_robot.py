@@ -17,8 +17,8 @@ PRESS_MNM = 241.0       # the outer spring on the wall; measurements.md#clamp-sp
 #: Outer bend angle (rad) where the front V meets the walls with the front
 #: part lying on a side, per pipe diameter: the V spans the chord there,
 #: not the diameter (twin, 90 mm, bench/pab_clamp_probe 90 150 left:
-#: Bend I -0.638 rad, spring 240 mNm; measurements.md#front-custom-sideways). A clamp whose guard lies beyond it
-#: is not reached.
+#: Bend I -0.638 rad, spring 240 mNm; measurements.md#front-custom-sideways).
+#: A clamp whose guard lies beyond it is not reached.
 FRONT_WALL_ON_SIDE_RAD = {90: -0.638}
 
 

@@ -1,5 +1,5 @@
-"""The mission executive against the physics twin, in one process: routes planned, run by the executive on the real Pirate
-Server (SimHarness, pirate.supervisory.harness_robot). The twin's ground
+"""The mission executive against the physics twin, in one process: routes
+planned, run by the executive on the real Pirate Server (SimHarness, pirate.supervisory.harness_robot). The twin's ground
 truth is read by the test only, to judge; the executive never sees it.
 bench/mission_sweep runs the same over many start rolls with sensor noise.
 

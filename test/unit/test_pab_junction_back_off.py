@@ -9,7 +9,8 @@ of odometry and steers on, within the steering's own time bound. Here a
 small kinematic stand-in replaces the twin: the wheels move the odometry
 at the set speed except where an edge stops them, and the front turns
 round once it reaches the edge after backing off (as the twin's 110 mm
-T-joint entered through its run did: measurements.md#turn-back-off). The twin itself is swept by bench/pab_junction_sweep.
+T-joint entered through its run did: measurements.md#turn-back-off). The
+twin itself is swept by bench/pab_junction_sweep.
 """
 import collections
 import math

@@ -1,5 +1,5 @@
-"""The host's ROS edge without a master or a port: buffer sizes refused, renegotiated types recreated,
-parameters served, the laptop's latched state re-sent, version mismatch on
+"""The host's ROS edge without a master or a port: buffer sizes refused,
+renegotiated types recreated, parameters served, the laptop's latched state re-sent, version mismatch on
 diagnostics. The port is a fake that records what was written."""
 import struct
 

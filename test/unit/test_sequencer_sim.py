@@ -5,8 +5,8 @@ one process (no ROS), the robot paced at SPEEDUP x real time. The robot
 here is :class:`pirate.sim.fake_robot.FakeRobot`, fitted to the report's
 tables and NOT physics (``fake_harness``): these tests sweep many rolls and
 random cancel instants, which need a fast deterministic robot, and a
-clamp retried after a cancel, which the twin does not always converge. The report's experiments themselves run on the physics
-twin (test_sim_twin_sequencer.py). Every goal runs under a watchdog thread,
+clamp retried after a cancel, which the twin does not always converge. The
+report's experiments themselves run on the physics twin (test_sim_twin_sequencer.py). Every goal runs under a watchdog thread,
 so a hang fails the test instead of blocking it. Checks:
 - clamp straight from every 15 deg: success ending straight and clamped,
   or abort with a message; never a hang;

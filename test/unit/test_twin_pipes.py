@@ -1,7 +1,8 @@
 """The pipe walls of the physics twin (pirate.sim.twin_pipes): boxes that leave the pipe's bore free.
 
 A wall box standing inside the bore is a step no real pipe has: at a
-T-joint's rim one square to the path stalled a wheel. Pure geometry of the generated MJCF, no MuJoCo.
+T-joint's rim one square to the path stalled a wheel. Pure geometry of the
+generated MJCF, no MuJoCo.
 """
 import itertools
 import math
