@@ -42,7 +42,7 @@ import ready
 from actionlib_msgs.msg import GoalStatus
 
 from pirate import names
-from pirate.sim.chapter6 import pass_counts
+from pirate.testing.chapter6 import pass_counts
 from pirate.msg import PirateAction, PirateGoal, RobotState, SetpointArray
 from pirate.supervisory.goal_client import SimpleGoalClient
 

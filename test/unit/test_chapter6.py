@@ -2,7 +2,7 @@
 report's sequence (a re-adjust pass run a whole number of times)."""
 import pytest
 
-from pirate.sim.chapter6 import (ANY_RE_ADJUST, CLAMP_NOMINAL, CLAMP_NON_NOMINAL, CLAMP_SIMPLE, CUSTOM_RE_ADJUST, RE_ADJUST,
+from pirate.testing.chapter6 import (ANY_RE_ADJUST, CLAMP_NOMINAL, CLAMP_NON_NOMINAL, CLAMP_SIMPLE, CUSTOM_RE_ADJUST, RE_ADJUST,
                                  loop_passes, pass_counts)
 
 CUSTOM_HEAD = CLAMP_NON_NOMINAL[:5]

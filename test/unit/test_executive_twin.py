@@ -31,7 +31,7 @@ import pytest
 import yaml
 
 from pirate.sequencer.pabs import junction
-from pirate.sim.harness import SimHarness
+from pirate.testing.harness import SimHarness
 from pirate.supervisory import executive as ex
 from pirate.supervisory import planner
 from pirate.supervisory.harness_robot import HarnessRobot

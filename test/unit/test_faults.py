@@ -20,7 +20,7 @@ from pirate.sequencer.guards import BadConfig, GuardBook, load_files
 from pirate.sequencer.pabs.base import PabFailed
 from pirate.sequencer.pabs.drive import Drive
 from pirate.sequencer.pabs.wheels import Progress as DriveProgress
-from pirate.sim.harness import SimHarness
+from pirate.testing.harness import SimHarness
 from pirate.state.assembler import BadState, StateAssembler
 from pirate.state.feed import RobotFeed, RobotView, TimedOut
 

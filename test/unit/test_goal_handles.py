@@ -25,7 +25,7 @@ from actionlib_msgs.msg import GoalStatus
 
 from pirate.robot.writers import OneWriter
 from pirate.sequencer import manager_node
-from pirate.sim.harness import SimHarness
+from pirate.testing.harness import SimHarness
 
 CANCELS = 1000
 SENDERS = 2

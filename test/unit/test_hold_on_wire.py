@@ -15,7 +15,7 @@ import pytest
 from pirate.robot import commands
 from pirate.robot.hold import safe_hold
 from pirate.sequencer.primitives import MotionPrimitives
-from pirate.sim.harness import SimHarness
+from pirate.testing.harness import SimHarness
 from pirate.state.feed import Cancelled, RobotFeed
 
 HOLD_PWM = (1, 2, 3, 6, 7)      # front tilt, Bend I, II, III, IV (Table 4.1/4.2)

@@ -14,7 +14,7 @@ import math
 
 import pytest
 
-from pirate.sim.harness import SimHarness
+from pirate.testing.harness import SimHarness
 from test_sequencer_sim import assert_ended, run_bounded
 from test_sim_twin_sequencer import assert_clamped_straight, re_adjust_passes, robot_wait
 

@@ -11,7 +11,7 @@ import threading
 
 import pytest
 
-from pirate.sim.harness import SimHarness
+from pirate.testing.harness import SimHarness
 from test_sequencer_sim import run_bounded
 from test_sim_twin_sequencer import CLAMP_STRAIGHT, assert_clamped_straight, robot_wait
 

@@ -17,7 +17,7 @@ import threading
 import pytest
 
 from pirate.sequencer import clamp_state
-from pirate.sim.harness import SimHarness
+from pirate.testing.harness import SimHarness
 from pirate.sim.twin_robot import ROOT, ROTATIONAL_FRONT
 from test_sequencer_sim import run_bounded
 from test_sim_twin_sequencer import robot_wait

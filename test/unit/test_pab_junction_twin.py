@@ -43,8 +43,8 @@ from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.pabs import codes
 from pirate.sequencer.pabs import junction as jn
 from pirate.sequencer.pabs.clamp import in_region, region_around
-from pirate.sim import start_poses
-from pirate.sim.harness import SimHarness
+from pirate.testing import start_poses
+from pirate.testing.harness import SimHarness
 from pirate.world import network
 from test_sequencer_sim import SAFE_INDICES, STRAIGHT, assert_ended, run_bounded
 from test_sim_twin_sequencer import robot_wait

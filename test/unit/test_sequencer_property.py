@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 from hypothesis.stateful import RuleBasedStateMachine, initialize, invariant, rule, run_state_machine_as_test
 
 from pirate.sim.fake_robot import FakeRobot
-from pirate.sim.harness import SimHarness
+from pirate.testing.harness import SimHarness
 
 SPEEDUP = 60.0
 WORKER_BOUND_S = 20.0         # wall s a cancelled worker may take to return

@@ -22,9 +22,9 @@ import time
 
 import pytest
 
-from pirate.sim.chapter6 import CLAMP_NOMINAL, CLAMP_NON_NOMINAL, CLAMP_SIMPLE
+from pirate.testing.chapter6 import CLAMP_NOMINAL, CLAMP_NON_NOMINAL, CLAMP_SIMPLE
 from pirate.sim.fake_robot import FakeRobot
-from pirate.sim.harness import SimHarness
+from pirate.testing.harness import SimHarness
 
 SPEEDUP = 40.0
 SWEEP_SPEEDUP = 60.0

@@ -13,9 +13,9 @@ import time
 
 import pytest
 
-from pirate.sim.chapter6 import (ANY_RE_ADJUST, CLAMP_NOMINAL, CLAMP_NON_NOMINAL, CLAMP_SIMPLE, RE_ADJUST,
+from pirate.testing.chapter6 import (ANY_RE_ADJUST, CLAMP_NOMINAL, CLAMP_NON_NOMINAL, CLAMP_SIMPLE, RE_ADJUST,
                                  loop_passes, pass_counts)
-from pirate.sim.harness import SimHarness
+from pirate.testing.harness import SimHarness
 from pirate.sim.twin_robot import ROTATIONAL_FRONT
 from test_sequencer_sim import EXPERIMENTS, SAFE_INDICES, STRAIGHT, assert_ended, run_bounded
 

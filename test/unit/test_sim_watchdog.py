@@ -7,7 +7,7 @@ every board STOP, until a new setpoint array).
 import threading
 
 from pirate.robot import tables
-from pirate.sim.harness import SimHarness
+from pirate.testing.harness import SimHarness
 from pirate.sim.watchdog import WATCHDOG_S, MegaWatchdog
 
 STOP, PLAY = 8, 7

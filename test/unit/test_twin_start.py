@@ -11,7 +11,7 @@ import pytest
 
 from pirate import paths
 from pirate.sim import robot_end, twin_model, twin_robot, twin_start
-from pirate.sim.harness import SimHarness
+from pirate.testing.harness import SimHarness
 from pirate.sim.twin import TwinRobot
 
 STRAIGHT_90 = os.path.join(paths.CONFIG_DIR, 'worlds', 'straight_90.yaml')

@@ -20,7 +20,7 @@ Goal = collections.namedtuple('Goal', 'step status message seconds')
 
 
 class HarnessRobot(object):
-    """``harness``: a started pirate.sim.harness.SimHarness."""
+    """``harness``: a started pirate.testing.harness.SimHarness."""
 
     def __init__(self, harness):
         self.h = harness

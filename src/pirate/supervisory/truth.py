@@ -36,7 +36,7 @@ def robot_along_m(pipe_map, truth):
 
 def on_pab_state(harness, server_state, pab_state, action):
     """Call ``action()`` once, the first time the PAB ``server_state`` (e.g.
-    'Taking T-joint') of a pirate.sim.harness.SimHarness enters ``pab_state``,
+    'Taking T-joint') of a pirate.testing.harness.SimHarness enters ``pab_state``,
     in the PAB's own thread as its server reports it (so the twin has not
     moved on): to read the truth where a junction was sensed, or to pause
     there."""
@@ -50,7 +50,7 @@ def on_pab_state(harness, server_state, pab_state, action):
 
 
 def on_each_pab_state(harness, pab_states, action):
-    """Call ``action()`` each time a PAB of a pirate.sim.harness.SimHarness
+    """Call ``action()`` each time a PAB of a pirate.testing.harness.SimHarness
     enters one of ``pab_states`` (every goal, every junction), in the PAB's
     own thread as its server reports it."""
     last = [None]

@@ -2,7 +2,7 @@
 
 The clamp sweep (bench/pab_clamp_sweep) and probe (bench/pab_clamp_probe)
 start Clamp Straight / Clamp Sideways from the poses the issue names;
-each is made on a running :class:`pirate.sim.harness.SimHarness` the way
+each is made on a running :class:`pirate.testing.harness.SimHarness` the way
 an operator or a cancelled goal would leave the robot, never by setting
 the twin's state: a pose is something the robot can be in.
 """
