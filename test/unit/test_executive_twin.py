@@ -34,10 +34,10 @@ from pirate.sequencer.pabs import junction
 from pirate.testing.harness import SimHarness
 from pirate.supervisory import executive as ex
 from pirate.supervisory import planner
-from pirate.supervisory.harness_robot import HarnessRobot
+from pirate.testing.harness_robot import HarnessRobot
 from pirate.supervisory.localiser import Localiser
 from pirate.supervisory.plan_cli import load_settings
-from pirate.supervisory.truth import middle, on_each_pab_state, on_pab_state, robot_along_m
+from pirate.testing.truth import middle, on_each_pab_state, on_pab_state, robot_along_m
 from pirate.world import network
 from test_sequencer_sim import SAFE_INDICES
 
