@@ -18,7 +18,7 @@ import rospy
 
 from pirate import names
 from pirate.msg import ControlArray, LimitArray, SetpointArray
-from pirate.link.fil import FirmwareInTheLoop, build_native_firmware
+from pirate.testing.fil import FirmwareInTheLoop, build_native_firmware
 from pirate.link.rosserial_python_rules import serialise
 from pirate.sim.robot_end import make_robot
 

@@ -19,9 +19,9 @@ import rospy
 import rospkg
 from std_msgs.msg import String
 
-from pirate.link.fil import FirmwareInTheLoop, build_native_firmware
 from pirate.robot import tables
 from pirate.sim import robot_end
+from pirate.testing.fil import FirmwareInTheLoop, build_native_firmware
 
 
 def main():
