@@ -24,7 +24,7 @@ import pytest
 from actionlib_msgs.msg import GoalStatus
 
 from pirate.robot.writers import OneWriter
-from pirate.sequencer import manager_node
+from pirate.manager import manager_node
 from pirate.testing.harness import SimHarness
 
 CANCELS = 1000

@@ -11,7 +11,7 @@ import threading
 from types import SimpleNamespace
 
 from pirate.panel.config import Goal
-from pirate.sequencer import manager_node
+from pirate.manager import manager_node
 
 CLAMP = Goal(name=0, distance=0.0, speed=0.0, option=0)
 

@@ -161,7 +161,7 @@ class ParamServer(object):
 
 @pytest.fixture
 def node(monkeypatch):
-    from pirate.sequencer import manager_node
+    from pirate.manager import manager_node
     return manager_node, lambda fake: monkeypatch.setattr(manager_node, 'rospy', fake)
 
 

@@ -1,6 +1,6 @@
 """Pirate Server (report 4.7, 5.8): checks goals, runs PABs, one exit path.
 
-Pure Python; :mod:`pirate.sequencer.manager_node` wires it to an actionlib
+Pure Python; :mod:`pirate.manager.manager_node` wires it to an actionlib
 ActionServer. Rules:
 - while the operator panel is stopped (``authority``) every goal, from any
   client, is refused with that reason;

@@ -32,6 +32,7 @@ from pirate.robot.writers import OneWriter
 from pirate.state.assembler import pab_blocker
 from pirate.state.feed import RobotFeed, RobotView
 from pirate.state.ros_clock import silence_clock
+from pirate.panel.mapper_ros import MapperRos
 from pirate.sequencer.guards import BadConfig, GuardBook
 from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, PirateGoal,
                         PirateResult, PrimitiveStep, RobotState, SetpointArray)
@@ -165,7 +166,6 @@ class PirateManager(object):
     def _compose_panel(self):
         if not rospy.get_param('~panel', True):
             return None
-        from pirate.panel.mapper_ros import MapperRos
         client = self._panel_client = PabClient(self.server, self.server.pipe_diameter)
         panel = MapperRos(self.setpoint, self.control, self.limit, client, publish_arrays=False)
         client.on_result = panel.mapper.pab_result
