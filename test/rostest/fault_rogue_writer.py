@@ -15,7 +15,7 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from pirate import names
 from pirate.msg import ControlArray, PirateAction, PirateGoal, SetpointArray
 from pirate.robot import tables
-from pirate.supervisory.goal_client import SimpleGoalClient
+from pirate.supervisory.goal_client_ros import SimpleGoalClient
 
 from ready import wait_robot_connected, wait_until
 

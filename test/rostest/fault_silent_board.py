@@ -16,7 +16,7 @@ from actionlib_msgs.msg import GoalStatus
 from pirate import names
 from pirate.msg import ControlArray, PirateAction, PirateGoal, RobotState, SetpointArray, SmallState
 from pirate.robot import tables
-from pirate.supervisory.goal_client import SimpleGoalClient
+from pirate.supervisory.goal_client_ros import SimpleGoalClient
 
 from ready import wait_robot_connected, wait_until
 

@@ -19,7 +19,7 @@ from std_msgs.msg import String
 
 from pirate import names
 from pirate.msg import PirateAction, PirateGoal, RobotState
-from pirate.supervisory.goal_client import SimpleGoalClient
+from pirate.supervisory.goal_client_ros import SimpleGoalClient
 
 FAULT_TOPIC = '/fil_robot/fault'
 

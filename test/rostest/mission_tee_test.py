@@ -19,7 +19,7 @@ from seq_experiment import is_safe
 from pirate import names
 from pirate.msg import MissionAction, MissionGoal, PirateActionFeedback, SetpointArray
 from pirate.srv import MissionCommand, ServerStatus
-from pirate.supervisory.goal_client import SimpleGoalClient
+from pirate.supervisory.goal_client_ros import SimpleGoalClient
 
 WAIT_S = 240.0
 TAKING, LOOKING = 'Taking T-joint', 'looking for the junction'

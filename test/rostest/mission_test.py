@@ -17,7 +17,7 @@ from ready import wait_robot_connected, wait_until
 from pirate import names
 from pirate.msg import MidiInput, MidiOutput, MissionAction, MissionGoal
 from pirate.srv import MissionCommand, ServerStatus
-from pirate.supervisory.goal_client import SimpleGoalClient
+from pirate.supervisory.goal_client_ros import SimpleGoalClient
 from std_msgs.msg import String
 
 WAIT_S = 120.0

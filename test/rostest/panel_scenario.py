@@ -50,7 +50,7 @@ from pirate import names
 from pirate.robot import tables
 from pirate.msg import (MidiInput, MidiOutput, PirateAction, PirateActionResult, PirateGoal, RobotState,
                         SetpointArray)
-from pirate.supervisory.goal_client import SimpleGoalClient
+from pirate.supervisory.goal_client_ros import SimpleGoalClient
 
 STATUS = {'active': 1, 'preempted': 2, 'succeeded': 3, 'aborted': 4, 'rejected': 5}
 POLL_S = 0.02

@@ -44,7 +44,7 @@ from actionlib_msgs.msg import GoalStatus
 from pirate import names
 from pirate.testing.chapter6 import pass_counts
 from pirate.msg import PirateAction, PirateGoal, RobotState, SetpointArray
-from pirate.supervisory.goal_client import SimpleGoalClient
+from pirate.supervisory.goal_client_ros import SimpleGoalClient
 
 UP_S = 60.0                 # wall s for the stack to come up
 GOAL_WALL_S = 120.0         # wall s one goal may take

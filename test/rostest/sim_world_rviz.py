@@ -22,7 +22,7 @@ import ready
 import viz_rviz
 from pirate import names
 from pirate.msg import PirateAction, PirateGoal
-from pirate.supervisory.goal_client import SimpleGoalClient
+from pirate.supervisory.goal_client_ros import SimpleGoalClient
 from pirate.world.network import world_path
 from pirate.viz import world_markers
 from pirate.world import network

@@ -24,7 +24,7 @@ import ready
 
 from pirate import names
 from pirate.msg import PirateAction, PirateGoal
-from pirate.supervisory.goal_client import SimpleGoalClient
+from pirate.supervisory.goal_client_ros import SimpleGoalClient
 from pirate.viz import plot_cli
 
 # The repository (not the workspace's folder of links): results land in its test-results/.

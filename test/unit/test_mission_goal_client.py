@@ -11,7 +11,7 @@ from actionlib_msgs.msg import GoalStatus
 
 from pirate.msg import PirateResult
 from pirate.supervisory import executive_node
-from pirate.supervisory.goal_client import GoalClient
+from pirate.supervisory.goal_client_ros import GoalClient
 
 WAIT_S = 10.0
 
@@ -138,7 +138,7 @@ def test_a_cancel_that_meets_the_goal_ending_is_not_sent():
 @pytest.mark.parametrize('status, seen', [('timeout', 'aborted'), ('interrupted', 'aborted'),
                                           ('recalled', 'rejected'), ('succeeded', 'succeeded')])
 def test_the_executive_retries_a_timeout_and_never_a_recall(status, seen):
-    from pirate.supervisory.goal_client import Ending
+    from pirate.supervisory.goal_client_ros import Ending
     result = PirateResult(message='m') if status == 'succeeded' else None
     report = executive_node.report(Ending(status, 'm', result), 12.5, 2.5)
     assert report.status == seen and report.odometry_mm == 12.5 and report.message == 'm'
@@ -149,7 +149,7 @@ def test_the_executive_retries_a_timeout_and_never_a_recall(status, seen):
 def test_the_junction_is_placed_in_the_robots_odometry_not_the_goals(found, at):
     """The result's junction_odometry counts from the goal's start; the
     localiser works in the robot's odometry (the goal started at 1000 mm)."""
-    from pirate.supervisory.goal_client import Ending
+    from pirate.supervisory.goal_client_ros import Ending
     result = PirateResult(message='m', junction_odometry=found)
     report = executive_node.report(Ending('succeeded', 'm', result), 1900.0, 1000.0)
     assert report.junction_odometry_mm == at
@@ -167,7 +167,7 @@ class Server(object):
 
 
 def test_waiting_for_the_server_polls_in_wall_time_until_it_answers_or_the_time_is_up():
-    from pirate.supervisory.goal_client import wait_for_server
+    from pirate.supervisory.goal_client_ros import wait_for_server
     server = Server(3)
     assert wait_for_server(server, 30.0) and server.asks == 3
     absent = Server(None)

@@ -9,7 +9,7 @@ import rospy
 from actionlib_msgs.msg import GoalStatus
 
 from pirate.msg import PirateResult
-from pirate.supervisory.goal_client import SimpleGoalClient
+from pirate.supervisory.goal_client_ros import SimpleGoalClient
 
 CommState = actionlib.CommState
 

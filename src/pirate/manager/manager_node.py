@@ -31,7 +31,7 @@ from pirate.robot import commands
 from pirate.robot.writers import OneWriter
 from pirate.state.assembler import pab_blocker
 from pirate.state.feed import RobotFeed, RobotView
-from pirate.state.ros_clock import silence_clock
+from pirate.state.clock_ros import silence_clock
 from pirate.panel.mapper_ros import MapperRos
 from pirate.sequencer.guards import BadConfig, GuardBook
 from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, PirateGoal,

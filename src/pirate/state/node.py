@@ -20,7 +20,7 @@ from pirate.robot import tables
 from pirate.msg import RobotState, SmallState
 from pirate.srv import ImuSensor, ImuSensorResponse, JointSensors, JointSensorsResponse
 from pirate.state.assembler import BadState, StateAssembler, stale_reason
-from pirate.state.ros_clock import silence_clock
+from pirate.state.clock_ros import silence_clock
 
 
 def roll_quaternion(orientation):

@@ -20,7 +20,7 @@ often than ``slack_s``, so the clock is the wall clock; a robot that keeps
 its time running but stops reporting is noticed after the same wall time as
 a real one.
 
-Pure Python, no ROS (``state/ros_clock.py`` is its ROS edge).
+Pure Python, no ROS (``state/clock_ros.py`` is its ROS edge).
 """
 import threading
 import time

@@ -36,7 +36,7 @@ from pirate.sequencer.clamp_state import IDLE_CLAMPED
 from pirate.srv import MissionCommand, MissionCommandResponse, ServerStatus
 from pirate.supervisory import executive as ex
 from pirate.supervisory import planner
-from pirate.supervisory.goal_client import GoalClient
+from pirate.supervisory.goal_client_ros import GoalClient
 from pirate.supervisory.localiser import Localiser
 from pirate.supervisory.plan_cli import load_settings
 from pirate.world import network
@@ -49,7 +49,7 @@ LINE_WIDTH_M = 0.008
 
 class ActionRobot(object):
     """The executive's robot: one Pirate Server goal at a time
-    (pirate.supervisory.goal_client), its end as an :data:`ex.Report`."""
+    (pirate.supervisory.goal_client_ros), its end as an :data:`ex.Report`."""
 
     def __init__(self, timeout_s):
         self.goals = GoalClient(actionlib.ActionClient(names.PIRATE_ACTION, PirateAction), timeout_s,

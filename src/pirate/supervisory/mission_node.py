@@ -3,10 +3,10 @@
 Usage: ``rosrun pirate run_mission [--check] [MISSION.yaml]`` (default: the
 report's test mission), or ``rosrun pirate run_mission --route MAP FROM TO
 [...]`` for a route over a pipe map, run by the mission executive
-(pirate.supervisory.route_client). The mission is checked completely first (every
+(pirate.supervisory.route_client_ros). The mission is checked completely first (every
 error with its line; exit 2); ``--check`` prints the plan and exits
 without a ROS master. Exits 0 when every step succeeded, 1 otherwise.
-Each goal is sent and waited for by pirate.supervisory.goal_client.
+Each goal is sent and waited for by pirate.supervisory.goal_client_ros.
 """
 import argparse
 import os
@@ -18,8 +18,8 @@ import rospy
 
 from pirate import names, paths
 from pirate.sequencer.guards import load_files
-from pirate.supervisory import route_client
-from pirate.supervisory.goal_client import GoalClient, wait_for_server
+from pirate.supervisory import route_client_ros
+from pirate.supervisory.goal_client_ros import GoalClient, wait_for_server
 from pirate.supervisory.mission import MissionError, MissionRunner, TracedPrimitive, load_mission, plan
 from pirate.msg import PirateAction, PirateGoal
 from pirate.srv import ServerStatus
@@ -91,7 +91,7 @@ def main(argv=None):
     if args.route:
         if args.mission or len(args.route) < 3:
             parser.error('--route takes MAP FROM TO [...] and no mission file')
-        return route_client.run_route(args)
+        return route_client_ros.run_route(args)
     path = args.mission or default_mission()
     try:
         mission, default_speed = _check(path)

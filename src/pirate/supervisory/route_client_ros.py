@@ -15,7 +15,7 @@ from actionlib_msgs.msg import GoalStatus
 from pirate import names
 from pirate.msg import MissionAction, MissionGoal
 from pirate.supervisory import planner
-from pirate.supervisory.goal_client import SimpleGoalClient, wait_for_server
+from pirate.supervisory.goal_client_ros import SimpleGoalClient, wait_for_server
 from pirate.supervisory.plan_cli import load_settings
 from pirate.world import network
 
