@@ -16,7 +16,7 @@ from std_msgs.msg import Float64  # noqa: E402
 
 from pirate import names  # noqa: E402
 from pirate.supervisory import planner  # noqa: E402
-from pirate.viz import mission_plot, plot_cli  # noqa: E402
+from pirate.viz import bag_ros, mission_plot, plot_cli  # noqa: E402
 
 HERE = os.path.dirname(__file__)
 RECORDED = os.path.join(HERE, '..', 'data', 'missions', 'straight_90_pause.bag')
@@ -25,7 +25,7 @@ RESULTS = os.path.join(HERE, '..', '..', 'test-results')
 
 @pytest.fixture(scope='module')
 def run():
-    return mission_plot.read_mission(RECORDED)
+    return bag_ros.read_mission(RECORDED)
 
 
 def test_every_pab_sent_is_marked_in_order_with_its_distance(run):
@@ -73,7 +73,7 @@ def test_a_run_without_a_mission_has_no_mission_plot(tmp_path):
     path = str(tmp_path / 'no_mission.bag')
     with rosbag.Bag(path, 'w') as out:
         out.write(names.ROBOT_STATE_TOPIC + '_other', Float64(data=1.0), rospy.Time.from_sec(1.0))
-    assert mission_plot.read_mission(path) is None
+    assert bag_ros.read_mission(path) is None
 
 
 @pytest.mark.parametrize('lines, route', [

@@ -12,7 +12,7 @@ from pirate.msg import (PirateActionFeedback, PirateActionGoal, PirateActionResu
 
 from pirate import names
 from pirate.robot import tables  # noqa: E402
-from pirate.viz import bag, plot_cli  # noqa: E402
+from pirate.viz import bag_ros, plot_cli  # noqa: E402
 
 RESULTS = os.path.join(os.path.dirname(__file__), '..', '..', 'test-results')
 PRIMITIVES = ('move front', 'clamp rear', 'clamp front')
@@ -42,7 +42,7 @@ def _write(path):
 def test_read_run(tmp_path):
     path = str(tmp_path / 'run.bag')
     _write(path)
-    run, diameters = bag.read_run(path)
+    run, diameters = bag_ros.read_run(path)
     assert diameters == [90]
     assert len(run.times) == 60 and run.times[0] == 0.0
     assert run.positions['bend_i'][10] == pytest.approx(-0.1)
@@ -62,7 +62,7 @@ def test_a_primitive_recorded_before_the_first_state_is_at_zero(tmp_path):
         state.position = [0.0] * len(tables.JOINT_NAMES)
         state.effort = [0.0] * len(tables.JOINT_NAMES)
         out.write(names.ROBOT_STATE_TOPIC, state, rospy.Time.from_sec(50.25))
-    run, _ = bag.read_run(path)
+    run, _ = bag_ros.read_run(path)
     assert run.markers == [(0.0, 'move front')]
     assert run.times == [pytest.approx(0.25)]
 
@@ -106,7 +106,7 @@ def test_markers_from_the_trace_events_and_title(tmp_path):
         result.result.primitives = [PrimitiveStep(name=n, start=100.1 + 2.0 * i, end=100.1 + 2.0 * i + 1.5)
                                     for i, n in enumerate(('move front', 'clamp rear', 'clamp front', 'x'))]
         out.write(names.PIRATE_ACTION + '/result', result, rospy.Time.from_sec(106.5))
-    run, _ = bag.read_run(path)
+    run, _ = bag_ros.read_run(path)
     assert [p for _, p in run.markers] == ['move front', 'clamp rear', 'clamp front', 'x']
     assert [t for t, _ in run.markers] == pytest.approx([0.0, 2.0, 4.0, 6.0], abs=1e-6)
     assert run.events == [(pytest.approx(6.4), 'cancelled: Clamp Straight cancelled during clamping front')]

@@ -9,8 +9,8 @@ tN at each PAB (named in the key), red dashed lines at pauses and at the
 end, and the route's named points (the mission goal's map) as dotted
 levels, so a drive that stopped short of its target shows.
 
-``read_mission`` is the bag layer; ``panel`` and ``plot_mission`` take plain
-data, so a test checks what was drawn.
+pirate.viz.bag_ros reads the bag; ``mission_run``, ``panel`` and
+``plot_mission`` take plain data, so a test checks what was drawn.
 """
 import collections
 
@@ -19,7 +19,7 @@ from pirate.sequencer.goals import OPTION_NAMES
 from pirate.supervisory import planner
 from pirate.supervisory.executive import WAIT_RESUME
 from pirate.viz import plot
-from pirate.viz.bag import PAB_NAMES
+from pirate.viz.plot import PAB_NAMES
 from pirate.world import network
 
 ALONG_TOPIC = names.MISSION_ALONG_TOPIC
@@ -35,23 +35,19 @@ TOPICS = (ALONG_TOPIC, GOAL_TOPIC, FEEDBACK_TOPIC, RESULT_TOPIC, PAB_GOAL_TOPIC)
 MissionRun = collections.namedtuple('MissionRun', 'times along_mm markers events points title')
 
 
-def read_mission(path):
-    """The :data:`MissionRun` in the bag at ``path``, or None if it holds no
-    mission estimate (a run without the mission executive)."""
-    import rosbag
-    along, pab_goals, feedback, results, mission_goals = [], [], [], [], []
-    sink = {ALONG_TOPIC: along, PAB_GOAL_TOPIC: pab_goals, FEEDBACK_TOPIC: feedback,
-            RESULT_TOPIC: results, GOAL_TOPIC: mission_goals}
-    with rosbag.Bag(path) as bag:
-        for topic, msg, t in bag.read_messages(topics=list(TOPICS)):
-            sink[topic].append((t.to_sec(), msg))
+def mission_run(recorded):
+    """The :data:`MissionRun` in ``recorded`` ({topic in :data:`TOPICS`: [(t s,
+    message)]}, as :func:`pirate.viz.bag_ros.read_mission` reads a bag), or
+    None if it holds no mission estimate (a run without the mission executive)."""
+    along, pab_goals = recorded[ALONG_TOPIC], recorded[PAB_GOAL_TOPIC]
+    feedback, results = recorded[FEEDBACK_TOPIC], recorded[RESULT_TOPIC]
     if not along:
         return None
     t0 = min(t for t, _ in along + pab_goals + feedback)
     markers = [(t - t0, pab_label(msg.goal)) for t, msg in pab_goals]
     events = [(t - t0, text) for t, text in pauses(feedback)]
     events += [(t - t0, 'mission %s: %s' % (msg.result.status, msg.result.message)) for t, msg in results]
-    route = _route(mission_goals, results)
+    route = _route(recorded[GOAL_TOPIC], results)
     return MissionRun([t - t0 for t, _ in along], [msg.data for _, msg in along], markers, sorted(events),
                       route_points(route), mission_title(route, results))
 

@@ -15,12 +15,12 @@ holds both, five panels sharing the time axis:
 
 Cancels and aborts are red dashed lines named in the key; the tN labels
 are stacked on as many rows as it takes for none to overlap
-(:func:`label_rows`); the title says what ran (pirate.viz.bag builds it
+(:func:`label_rows`); the title says what ran (pirate.viz.bag_ros builds it
 from the run's goals).
 
 Everything takes plain data (lists of times and values, a list of
 (t, primitive) markers), so tests can check what was drawn without a bag;
-pirate.viz.bag is the thin layer that reads one. ``plot_run`` returns the
+pirate.viz.bag_ros is the thin layer that reads one. ``plot_run`` returns the
 panels it drew: the data, not a picture of it.
 """
 import collections
@@ -28,6 +28,7 @@ import math
 
 import matplotlib
 
+from pirate.sequencer.goals import CODES
 from pirate.sequencer.guards import CLAMP_BENDS
 
 matplotlib.use('Agg')
@@ -36,6 +37,8 @@ import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
 #: Table 5.4: the straight region of the orientation, rad.
 STRAIGHT_BAND = (1.52, 1.62)
 UPRIGHT = math.pi / 2
+#: The PABs' names by their goal codes (Pirate.action's ``name``).
+PAB_NAMES = {code: name for name, code in CODES.items()}
 
 #: A run: ``times`` s from the run's start; ``positions`` and ``efforts``
 #: map joint names to lists as long as ``times`` (rad, mNm); ``orientation``

@@ -12,19 +12,15 @@ import argparse
 import os
 import sys
 
-import rospkg
 import yaml
 
-from pirate.viz import bag, mission_plot, plot
+from pirate import paths
+from pirate.viz import bag_ros, mission_plot, plot
 
 
 def _default_guards(diameter):
     """config/guards_<diameter>.yaml of the pirate package, None if absent."""
-    try:
-        path = os.path.join(rospkg.RosPack().get_path('pirate'), 'config',
-                            'guards_%d.yaml' % diameter)
-    except rospkg.ResourceNotFound:
-        return None
+    path = os.path.join(paths.CONFIG_DIR, 'guards_%d.yaml' % diameter)
     return path if os.path.exists(path) else None
 
 
@@ -42,9 +38,9 @@ def plot_bag(bag_path, output, guards=None, title=None):
     """Plot the run in ``bag_path`` to ``output``: (run, panels, config path).
 
     ``guards`` is a guard YAML path; None picks the goal pipe's. Raises
-    OSError, ValueError, yaml.YAMLError or bag.BagError on bad input.
+    OSError, ValueError, yaml.YAMLError or bag_ros.BagError on bad input.
     """
-    run, diameters = bag.read_run(bag_path)
+    run, diameters = bag_ros.read_run(bag_path)
     config, config_path = _guard_config(guards, diameters)
     lines = plot.guard_lines(config, [p for _, p in run.markers])
     drawn, _ = plot.plot_run(run, output, lines, title)
@@ -61,8 +57,8 @@ def main(argv=None):
     output = args.output or os.path.splitext(args.bag)[0] + '.png'
     try:
         run, _, config_path = plot_bag(args.bag, output, args.guards, args.title)
-        mission = mission_plot.read_mission(args.bag)
-    except (OSError, ValueError, yaml.YAMLError, bag.BagError) as error:
+        mission = bag_ros.read_mission(args.bag)
+    except (OSError, ValueError, yaml.YAMLError, bag_ros.BagError) as error:
         sys.exit('plot_run: %s' % error)
     for i, (t, primitive) in enumerate(run.markers, 1):
         print('t%d %7.2f s  %s' % (i, t, primitive))

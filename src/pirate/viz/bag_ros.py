@@ -1,4 +1,5 @@
-"""Read a run's rosbag (launch/record.launch) into a pirate.viz.plot.Run.
+"""Read a run's rosbag (launch/record.launch) into a pirate.viz.plot.Run,
+and a mission's into a pirate.viz.mission_plot.MissionRun.
 
 The thin layer between rosbag and the plot: joint angles, efforts, the
 orientation, odometry and wheel speed from /pirate/state; the primitive
@@ -15,8 +16,8 @@ import os
 import rosbag
 
 from pirate import names
-from pirate.sequencer.goals import CODES
-from pirate.viz import plot
+from pirate.viz import mission_plot, plot
+from pirate.viz.plot import PAB_NAMES
 
 FEEDBACK_TOPIC = names.PIRATE_ACTION + '/feedback'
 GOAL_TOPIC = names.PIRATE_ACTION + '/goal'
@@ -25,7 +26,6 @@ RESULT_TOPIC = names.PIRATE_ACTION + '/result'
 BagError = rosbag.ROSBagException
 #: actionlib_msgs/GoalStatus codes of the ends the plot marks.
 MARKED_ENDS = {2: 'cancelled', 4: 'aborted'}
-PAB_NAMES = {code: name for name, code in CODES.items()}
 
 
 def read_run(path):
@@ -33,6 +33,36 @@ def read_run(path):
 
     Raises ValueError when the bag holds no robot state to plot.
     """
+    states, feedback, goals, results = _read_pirate_topics(path)
+    if not states:
+        raise ValueError('%s holds no %s messages to plot' % (path, names.ROBOT_STATE_TOPIC))
+    found = _primitive_starts(feedback, results)
+    t0 = min([states[0][0]] + [t for t, _ in found])
+    positions, efforts = _joint_series(states)
+    run = plot.Run(times=[t - t0 for t, _ in states], positions=positions, efforts=efforts,
+                   orientation=[msg.orientation for _, msg in states],
+                   markers=[(t - t0, p) for t, p in found],
+                   odometry=[msg.odometry - states[0][1].odometry for _, msg in states],
+                   velocity=[msg.velocity for _, msg in states],
+                   events=_marked_ends(results, t0), title=run_title(goals, results, path))
+    return run, [g.pipe_diameter for _, g in goals if g.pipe_diameter]
+
+
+def _primitive_starts(feedback, results):
+    """[(t s, primitive)]: the results' traces, or the feedback's transitions without them."""
+    traced = [(p.start, p.name) for _, msg in results for p in msg.result.primitives]
+    return traced if traced else [(t, p) for t, p in plot.transitions(feedback)]
+
+
+def _marked_ends(results, t0):
+    """[(t s from ``t0``, 'cancelled: ...' / 'aborted: ...')] of the results."""
+    return [(t - t0, '%s: %s' % (MARKED_ENDS[msg.status.status], msg.result.message))
+            for t, msg in results if msg.status.status in MARKED_ENDS]
+
+
+def _read_pirate_topics(path):
+    """([(t s, RobotState)], [(t s, goal id, primitive)], [(t s, PirateGoal)],
+    [(t s, PirateActionResult)]) recorded in the bag at ``path``."""
     states, feedback, goals, results = [], [], [], []
     with rosbag.Bag(path) as bag:
         topics = [names.ROBOT_STATE_TOPIC, FEEDBACK_TOPIC, GOAL_TOPIC, RESULT_TOPIC]
@@ -45,11 +75,12 @@ def read_run(path):
                 results.append((t.to_sec(), msg))
             else:
                 goals.append((t.to_sec(), msg.goal))
-    if not states:
-        raise ValueError('%s holds no %s messages to plot' % (path, names.ROBOT_STATE_TOPIC))
-    traced = [(p.start, p.name) for _, msg in results for p in msg.result.primitives]
-    found = traced if traced else [(t, p) for t, p in plot.transitions(feedback)]
-    t0 = min([states[0][0]] + [t for t, _ in found])
+    return states, feedback, goals, results
+
+
+def _joint_series(states):
+    """({joint: [rad]}, {joint: [mNm]}) for the joints the first state names;
+    NaN where a later state lacks one."""
     joints = list(states[0][1].name)
     positions = {j: [] for j in joints}
     efforts = {j: [] for j in joints}
@@ -59,15 +90,17 @@ def read_run(path):
             position, effort = by_name.get(j, (float('nan'), float('nan')))
             positions[j].append(position)
             efforts[j].append(effort)
-    events = [(t - t0, '%s: %s' % (MARKED_ENDS[msg.status.status], msg.result.message))
-              for t, msg in results if msg.status.status in MARKED_ENDS]
-    run = plot.Run(times=[t - t0 for t, _ in states], positions=positions, efforts=efforts,
-                   orientation=[msg.orientation for _, msg in states],
-                   markers=[(t - t0, p) for t, p in found],
-                   odometry=[msg.odometry - states[0][1].odometry for _, msg in states],
-                   velocity=[msg.velocity for _, msg in states],
-                   events=events, title=run_title(goals, results, path))
-    return run, [g.pipe_diameter for _, g in goals if g.pipe_diameter]
+    return positions, efforts
+
+
+def read_mission(path):
+    """The :data:`pirate.viz.mission_plot.MissionRun` in the bag at ``path``,
+    or None if it holds no mission estimate (a run without the mission executive)."""
+    recorded = {topic: [] for topic in mission_plot.TOPICS}
+    with rosbag.Bag(path) as bag:
+        for topic, msg, t in bag.read_messages(topics=list(mission_plot.TOPICS)):
+            recorded[topic].append((t.to_sec(), msg))
+    return mission_plot.mission_run(recorded)
 
 
 def run_title(goals, results, path):
