@@ -64,11 +64,6 @@ def encode(topic, payload=b''):
             + payload + bytes((message_checksum(topic, payload),)))
 
 
-def frame_size(payload_len):
-    """Bytes on the wire for a frame with ``payload_len`` payload bytes."""
-    return OVERHEAD + payload_len
-
-
 class Stats(object):
     """Counters of what the parser saw; read by the host's diagnostics."""
 
@@ -78,10 +73,6 @@ class Stats(object):
     def __init__(self):
         for name in self.__slots__:
             setattr(self, name, 0)
-
-    def as_dict(self):
-        """All counters by name."""
-        return {name: getattr(self, name) for name in self.__slots__}
 
 
 class FrameParser(object):

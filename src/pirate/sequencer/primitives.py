@@ -109,11 +109,6 @@ class MotionPrimitives(object):
         with self.writing():
             self.control.set_mode(joint, mode)
 
-    def change_limit(self, bend, value):
-        """Torque limit of one bend module (uint16, 0xFFFF none)."""
-        with self.writing():
-            self.limit.set(bend, value)
-
     def drive_at_velocity(self, mm_s):
         """Wheels at ``mm_s`` (signed); refused above the robot's maximum."""
         if not safety.drive_speed_ok(mm_s):

@@ -55,9 +55,6 @@ class _Pacer(object):
             out += self._queue.popleft()[1]
         return out
 
-    def next_due(self):
-        return self._queue[0][0] if self._queue else None
-
     def clear(self):
         self._queue.clear()
 
@@ -188,10 +185,6 @@ class FirmwareInTheLoop(object):
         """Nothing crosses the link for ``seconds`` (device bytes are lost)."""
         with self._lock:
             self._stalled_until = self.clock() + seconds
-
-    def kill_firmware(self):
-        with self._lock:
-            self._stop_firmware()
 
     # -- relay ----------------------------------------------------------------
     def _run(self):
