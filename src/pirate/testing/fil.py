@@ -201,41 +201,66 @@ class FirmwareInTheLoop(object):
                 self._pump(readable, self.clock())
 
     def _pump(self, readable, now):
+        """One relay pass (lock held): read what is ``readable``, deliver
+        what is due at ``now`` (s), step the model."""
         stalled = now < self._stalled_until
-        if self._master is not None and self._master in readable and not stalled:
-            data = _read(self._master)
-            if data is None:
-                # EIO: the host has not opened the port; look again in 20 ms.
-                self._master_quiet_until = now + 0.02
-            elif data:
-                self._to_fw.push(data, now)
-        if self._proc is not None and self._proc.stdout.fileno() in readable:
-            data = _read(self._proc.stdout.fileno())
-            if data and not stalled and self._master is not None:
-                self._to_host.push(data, now)
-        if self._bus is not None and self._bus.fileno() in readable:
-            data = _read(self._bus.fileno())
-            if data:
-                reply = self.boards.feed(data, now)
-                if reply and self.muted is not None and reply[1] == self.muted:
-                    reply = b''   # one STATE per request: this one is the muted board's
-                if reply:
-                    self._bus.sendall(reply)
+        self._from_host(readable, now, stalled)
+        self._from_firmware(readable, now, stalled)
+        self._serve_bus(readable, now)
+        self._deliver_to_firmware(now)
+        self._deliver_to_host(now)
+        self._step_model(now)
+
+    def _from_host(self, readable, now, stalled):
+        if self._master is None or self._master not in readable or stalled:
+            return
+        data = _read(self._master)
+        if data is None:
+            # EIO: the host has not opened the port; look again in 20 ms.
+            self._master_quiet_until = now + 0.02
+        elif data:
+            self._to_fw.push(data, now)
+
+    def _from_firmware(self, readable, now, stalled):
+        if self._proc is None or self._proc.stdout.fileno() not in readable:
+            return
+        data = _read(self._proc.stdout.fileno())
+        if data and not stalled and self._master is not None:
+            self._to_host.push(data, now)
+
+    def _serve_bus(self, readable, now):
+        """Answer the firmware's bus request with the simulated boards' reply."""
+        if self._bus is None or self._bus.fileno() not in readable:
+            return
+        data = _read(self._bus.fileno())
+        reply = self.boards.feed(data, now) if data else b''
+        if reply and self.muted is not None and reply[1] == self.muted:
+            reply = b''   # one STATE per request: this one is the muted board's
+        if reply:
+            self._bus.sendall(reply)
+
+    def _deliver_to_firmware(self, now):
         to_fw = self._to_fw.pop_ready(now)
-        if to_fw and self._proc is not None:
-            if self.record:
-                self.host_frames.extend((now, f.topic, f.payload)
-                                        for f in self._host_parser.feed(to_fw))
-            try:
-                self._proc.stdin.write(to_fw)
-            except (BrokenPipeError, OSError):
-                pass
+        if not to_fw or self._proc is None:
+            return
+        if self.record:
+            self.host_frames.extend((now, f.topic, f.payload) for f in self._host_parser.feed(to_fw))
+        try:
+            self._proc.stdin.write(to_fw)
+        except (BrokenPipeError, OSError):
+            pass
+
+    def _deliver_to_host(self, now):
         to_host = self._to_host.pop_ready(now)
-        if to_host and self._master is not None:
-            try:
-                os.write(self._master, to_host)
-            except OSError:
-                pass   # nobody has the port open: bytes lost, as on a real line
+        if not to_host or self._master is None:
+            return
+        try:
+            os.write(self._master, to_host)
+        except OSError:
+            pass   # nobody has the port open: bytes lost, as on a real line
+
+    def _step_model(self, now):
+        """Step the model at the PICO loop rate up to ``now``."""
         while now - self._last_step >= PICO_PERIOD_S:
             self.model.step(PICO_PERIOD_S)
             self._last_step += PICO_PERIOD_S
