@@ -1,3 +1,3 @@
 """The simulated robot: the physics twin (twin*.py, boards.py) and its ROS
-edge (node.py); fake_robot.py is a fitted fast fake that only unit tests
+edge (robot_node.py); fake_robot.py is a fitted fast fake that only unit tests
 build, not physics. The in-process harness is in pirate.testing."""
