@@ -196,3 +196,90 @@ def test_session_takes_every_recorded_frame_of_our_firmware_without_error():
     sess, events = negotiated('pirate_bay_rosserial_python')
     assert sess.state == session.UP and sess.lost_syncs == 0
     assert not [e for e in events if e.kind == 'error']
+
+
+# -- a device that waits -------------------------------------------------------
+SLOW_CALL, MISSING_PARAM = 'ros_lib_slow_call', 'ros_lib_missing_param'
+HOSTS = ('rosserial_python', 'serial_node')
+
+
+def replay(name, until=None, tick=0.01):
+    """A HostSession fed trace ``name`` as it happened: the device's frames at
+    their times, the host's frames reported as sent, a tick every ``tick``
+    s to the end of the trace; or, with ``until`` (s), the device falls
+    silent then (it died) and the session is ticked on for 2 s. Return (session, [(time, lost-sync event)])."""
+    parsers = {'d2h': FrameParser(), 'h2d': FrameParser()}
+    timeline = sorted((t, d, f) for t, d, data in trace(name) for f in parsers[d].feed(data))
+    sess = session.HostSession()
+    start = next(t for t, d, f in timeline if d == 'h2d' and f.topic == protocol.ID_PUBLISHER)
+    sess.opened(start)
+    lost, now = [], start
+
+    def tick_until(when):
+        nonlocal now
+        while now < when:
+            lost.extend((now, e) for e in sess.tick(now)[1] if e.kind == 'lost_sync')
+            now += tick
+
+    for t, direction, frame in timeline:
+        if t < start or (until is not None and t > until):
+            continue
+        tick_until(t)
+        if direction == 'd2h':
+            sess.on_frame(frame, t, 0.0)
+        else:
+            sess.sent(frame.topic, t)
+    tick_until(until + 2.0 if until is not None else timeline[-1][0])
+    return sess, lost
+
+
+def device_said(name):
+    return [messages.decode_log(f.payload)[1] for f in on(name, 'd2h', protocol.ID_LOG)]
+
+
+def _call_times(name):
+    """(time of the device's request, time of the host's answer)."""
+    sess, _ = negotiated(name)
+    request = _service_id(sess, 'client', 'request')
+    response = _service_id(sess, 'client', 'response')
+    asked = [t for t, f in frames(name, 'd2h') if f.topic == request]
+    answered = [t for t, f in frames(name, 'h2d') if f.topic == response]
+    return asked, answered
+
+
+@pytest.mark.parametrize('host', HOSTS)
+def test_a_device_waiting_1_5_s_in_a_service_call_gets_its_answer(host):
+    name = '%s_%s' % (SLOW_CALL, host)
+    (asked,), (answered,) = _call_times(name)
+    assert 1.5 <= answered - asked < 1.6
+    assert not [t for t, f in frames(name, 'h2d')
+                if f.topic == protocol.ID_PUBLISHER and asked < t < answered + 1.0]
+    (said,) = [text for text in device_said(name) if text.startswith('call /slow_srv')]
+    assert said.startswith('call /slow_srv: 1 ints (42) after 15')
+    # our session, fed what the device did, waits with it
+    sess, lost = replay(name)
+    assert lost == [] and sess.state == session.UP
+
+
+@pytest.mark.parametrize('host', HOSTS)
+def test_a_getparam_of_a_missing_parameter_does_not_renegotiate(host):
+    name = '%s_%s' % (MISSING_PARAM, host)
+    (asked,) = [t for t, f in frames(name, 'd2h') if f.topic == protocol.ID_PARAMETER_REQUEST]
+    assert on(name, 'h2d', protocol.ID_PARAMETER_REQUEST) == []      # nothing to answer
+    assert not [t for t, f in frames(name, 'h2d')
+                if f.topic == protocol.ID_PUBLISHER and t > asked]
+    assert 'Failed to get param: timeout expired' in device_said(name)
+    assert any(text.startswith('getParam ~missing: false after 100')
+               for text in device_said(name))
+    sess, lost = replay(name)
+    assert lost == [] and sess.state == session.UP
+
+
+@pytest.mark.parametrize('name', ('%s_rosserial_python' % SLOW_CALL,
+                                  '%s_rosserial_python' % MISSING_PARAM))
+def test_a_streaming_device_that_dies_after_its_wait_is_noticed_within_1_s(name):
+    said = min(t for t, f in frames(name, 'd2h') if f.topic == protocol.ID_LOG)
+    last = max(t for t, f in frames(name, 'd2h') if t <= said + 0.5)
+    sess, lost = replay(name, until=said + 0.5)
+    (when, event), = lost
+    assert 0 < when - last <= 1.0 and event.data[0] == 1

@@ -28,7 +28,7 @@ class FakeLink(object):
         return True
 
     def discard_output(self):
-        pass
+        del self.written[:]          # what the port had not sent yet
 
 
 @pytest.fixture
@@ -62,6 +62,51 @@ def test_message_larger_than_the_device_buffer_is_refused(host):
     assert host.counts['oversize_refused'] == 1
     assert host._send_frame(101, bytes(16), '/text')
     assert host.link.written[-1] == Frame(101, bytes(16))
+
+
+def test_a_message_larger_than_the_buffer_is_an_error(host, monkeypatch):
+    logged = []
+    for level in ('logwarn', 'logerr'):
+        monkeypatch.setattr(host_module.rospy, level,
+                            lambda *args, level=level: logged.append((level, args[0] % args[1:])))
+    announce(host, protocol.ID_SUBSCRIBER, 101, '/text', String, size=16)
+    up(host)
+    host._send_frame(101, bytes(17), '/text')
+    assert [level for level, _ in logged] == ['logerr']
+    assert 'message larger than buffer' in logged[0][1] and '/text' in logged[0][1]
+
+
+class FakeUpdater(object):
+    def __init__(self):
+        self.forced = 0
+
+    def force_update(self):
+        self.forced += 1
+
+
+def test_every_lost_sync_is_a_warning_with_its_count_and_on_diagnostics(host, monkeypatch):
+    warned = []
+    monkeypatch.setattr(host_module.rospy, 'logwarn', lambda *args: warned.append(args[0] % args[1:]))
+    host._updater = FakeUpdater()
+    announce(host, protocol.ID_PUBLISHER, 100, '/chatter', String)
+    t = 0.0
+    for episode in range(5):
+        host._carry_out(*host.session.on_frame(Frame(protocol.ID_TIME, bytes(8)), t, 1.0))
+        for _ in range(10):                      # streaming at 100 Hz
+            t += 0.01
+            host._carry_out(*host.session.on_frame(Frame(100, b'\x00\x00\x00\x00'), t, 1.0))
+        host._carry_out(*host.session.tick(t + 8.0))         # then silent: lost
+        # the topic request survives the discarding of what was queued for the device
+        assert host.link.written == [Frame(protocol.ID_PUBLISHER, b'')]
+        announce(host, protocol.ID_PUBLISHER, 100, '/chatter', String)
+        t += 8.0
+    lost = [text for text in warned if 'lost sync' in text]
+    assert ['(%d so far)' % n in text for n, text in zip(range(1, 6), lost)] == [True] * 5
+    assert host._updater.forced == 5
+    status = host.diagnostic_status()
+    assert 'lost sync 5 times' in status.message
+    values = {pair.key: pair.value for pair in status.values}
+    assert values['lost_syncs'] == '5' and values['last_lost_sync'].startswith('#5 ')
 
 
 def test_frames_up_to_the_largest_announced_buffer_are_taken(host):

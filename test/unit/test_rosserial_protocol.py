@@ -190,6 +190,108 @@ def test_session_does_not_flap_with_a_device_that_syncs_every_2_5_s():
     assert sess.tick(t + 7.6)[1][-1] == ('link', session.NEGOTIATING)
 
 
+def _streaming_with_services(sess):
+    """Up, streaming at 90 Hz, with a ServiceClient (122/123) and a
+    ServiceServer (120/121) on the device; return the last frame's time."""
+    _handshake(sess)
+    for kind, topic_id in ((2, 120), (3, 121), (4, 122), (5, 123)):
+        info = messages.TopicInfo(topic_id, '/srv%d' % (kind // 2), 'std_srvs/Trigger', 'md5', 300)
+        sess.on_frame(Frame(kind, messages.encode_topic_info(info)), 0.0, 0)
+    last = _stream(sess, 0.0, 0.011, 40)
+    assert sess.lost_after() == 0.5
+    return last
+
+
+def _ticks(sess, start, end):
+    """Lost-sync events of ticks every 10 ms from ``start`` to ``end`` (s)."""
+    events, t = [], start
+    while t < end:
+        events += [e for e in sess.tick(t)[1] if e.kind == 'lost_sync']
+        t += 0.01
+    return events
+
+
+def test_a_device_in_a_service_call_holds_the_link_until_answered():
+    sess = session.HostSession(sync_timeout=0.5)
+    last = _streaming_with_services(sess)
+    sess.on_frame(Frame(122, b'request'), last, 0)            # ServiceClient::call
+    assert sess.device_waits(last) == [('client', '/srv2')]
+    assert _ticks(sess, last, last + 30.0) == []              # as long as the laptop takes
+    sess.sent(123, last + 30.0)                               # the answer
+    assert sess.device_waits(last + 30.0) == []
+    assert _ticks(sess, last + 30.0, last + 30.45) == []
+    (event,) = _ticks(sess, last + 30.45, last + 30.6)        # silent after it: dead
+    assert event.data[0] == 1 and sess.state == session.NEGOTIATING
+
+
+def test_the_wait_is_not_a_gap_of_the_stream():
+    sess = session.HostSession(sync_timeout=0.5)
+    last = _streaming_with_services(sess)
+    sess.on_frame(Frame(122, b'request'), last, 0)
+    sess.on_frame(Frame(protocol.ID_TIME, b''), last + 1.0, 0)   # spinOnce syncs meanwhile
+    sess.sent(123, last + 1.5)
+    last = _stream(sess, last + 1.5, 0.011, 20)
+    assert sess.lost_after() == 0.5
+
+
+def test_a_call_the_laptop_gives_up_lets_silence_count_again():
+    sess = session.HostSession(sync_timeout=0.5)
+    last = _streaming_with_services(sess)
+    sess.on_frame(Frame(122, b'request'), last, 0)
+    sess.given_up('client', '/srv2', last + 2.0)
+    assert _ticks(sess, last, last + 2.45) == []
+    assert len(_ticks(sess, last + 2.45, last + 2.6)) == 1
+
+
+def test_a_missing_parameter_holds_the_link_until_the_device_runs_again():
+    sess = session.HostSession(sync_timeout=0.5)
+    last = _streaming_with_services(sess)
+    sess.on_frame(Frame(protocol.ID_PARAMETER_REQUEST, struct.pack('<I', 2) + b'~x'), last, 0)
+    assert _ticks(sess, last, last + 1.0) == []               # ros_lib waits 1 s
+    last = _stream(sess, last + 1.0, 0.011, 3)                # then publishes again
+    assert sess.device_waits(last) == []
+    assert len(_ticks(sess, last + 0.45, last + 0.6)) == 1
+
+
+def test_a_parameter_wait_lasts_as_long_as_rosserial_python_s_lastsync():
+    sess = session.HostSession(sync_timeout=0.5)
+    last = _streaming_with_services(sess)
+    sess.on_frame(Frame(protocol.ID_PARAMETER_REQUEST, struct.pack('<I', 2) + b'~x'), last, 0)
+    assert _ticks(sess, last, last + session.LOST_AFTER_MAX_S) == []
+    assert len(_ticks(sess, last + session.LOST_AFTER_MAX_S, last + 15.1)) == 1
+
+
+def test_an_answered_parameter_ends_the_wait_at_once():
+    sess = session.HostSession(sync_timeout=0.5)
+    last = _streaming_with_services(sess)
+    sess.on_frame(Frame(protocol.ID_PARAMETER_REQUEST, struct.pack('<I', 2) + b'~x'), last, 0)
+    sess.sent(protocol.ID_PARAMETER_REQUEST, last + 0.01)
+    assert sess.device_waits(last + 0.01) == []
+    assert len(_ticks(sess, last + 0.45, last + 0.6)) == 1
+
+
+def test_a_request_to_the_device_s_server_holds_the_link_until_its_response():
+    sess = session.HostSession(sync_timeout=0.5)
+    last = _streaming_with_services(sess)
+    sess.sent(121, last)                                      # the laptop's call, forwarded
+    assert sess.device_waits(last) == [('server', '/srv1')]
+    assert _ticks(sess, last, last + 3.0) == []
+    sess.on_frame(Frame(120, b'response'), last + 3.0, 0)
+    assert sess.device_waits(last + 3.0) == []
+    assert len(_ticks(sess, last + 3.45, last + 3.6)) == 1
+
+
+def test_every_lost_sync_carries_its_running_count():
+    sess = session.HostSession(sync_timeout=0.5)
+    counts, t = [], 0.0
+    for _ in range(5):
+        _handshake(sess, t)
+        t = _stream(sess, t, 0.011, 10)
+        counts += [e.data[0] for e in _ticks(sess, t, t + 8.0)]
+        t += 8.0
+    assert counts == [1, 2, 3, 4, 5] and sess.lost_syncs == 5
+
+
 def test_session_takes_service_topic_info_while_up():
     # a ServiceServer's TopicInfo is no device reset
     sess = session.HostSession()

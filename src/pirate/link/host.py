@@ -16,14 +16,16 @@ What a ros_lib device may use is served (firmware/README.md, "Host"):
 publishers and subscribers (a topic announced again with another type is
 recreated), services both ways (:mod:`.service_bridge`), parameters from
 the parameter server, logs at their level, time. A message larger than the
-buffer the device announced for that topic is refused with an error, as
-rosserial_python does. The laptop's command state survives the link:
+buffer the device announced for that topic is refused and logged at ERROR,
+as rosserial_python does. Every lost sync is a WARN with its running count
+and shows on ``/diagnostics`` at once. The laptop's command state survives the link:
 the latest message of every *latched* publisher the device
 subscribes to is re-sent whenever the link comes up and whenever the
 device announces that subscriber again (after a reset), so control modes
 reach the boards before any setpoint.
 
-Diagnostics through diagnostic_updater (task "serial link") at 1 Hz; a
+Diagnostics through diagnostic_updater (task "serial link") at 1 Hz and at
+every lost sync; a
 frame of another rosserial protocol version makes it ERROR with
 rosserial_python's words, and is logged as an error.
 """
@@ -36,7 +38,7 @@ import rospy
 import roslib.message
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 
-from pirate.link import session as sessions
+from pirate.link import protocol, session as sessions
 from pirate.link.port import SerialLink
 from pirate.link.service_bridge import ServiceBridge
 from pirate.link.outbox import Outbox
@@ -66,10 +68,12 @@ class RosserialHost(object):
         self._device_pub = {}                 # device topic id -> topic name
         self._latched = {}                    # topic name -> last payload of a latched publisher
         self._logged = {}
+        self._updater = None
+        self._last_lost_sync = 'never'
         self._versions_logged = set()
         self.counts = dict(frames_out=0, link_ups=0, link_downs=0, deserialize_errors=0,
                            not_up_dropped=0, oversize_refused=0, params_served=0)
-        self.services = ServiceBridge(self._send_frame, self._warn)
+        self.services = ServiceBridge(self._send_frame, self._warn, self._given_up)
         self._threads = [threading.Thread(target=self._read_loop, name='rosserial-reader'),
                          threading.Thread(target=self._write_loop, name='rosserial-writer')]
 
@@ -91,10 +95,10 @@ class RosserialHost(object):
         for thread in self._threads:
             thread.daemon = True
             thread.start()
-        updater = diagnostic_updater.Updater()
-        updater.setHardwareID(self.link.port_name)
-        updater.add('serial link', self._fill_diagnostics)
-        rospy.Timer(rospy.Duration(1.0), lambda _event: updater.update())
+        self._updater = diagnostic_updater.Updater()
+        self._updater.setHardwareID(self.link.port_name)
+        self._updater.add('serial link', self._fill_diagnostics)
+        rospy.Timer(rospy.Duration(1.0), lambda _event: self._updater.update())
         rospy.on_shutdown(self.shutdown)
 
     def shutdown(self):
@@ -110,13 +114,14 @@ class RosserialHost(object):
         self.link.close()
 
     # -- logging ------------------------------------------------------------
-    def _warn(self, text):
-        """Log each distinct problem once, then every 100th repeat."""
+    def _warn(self, text, level='logwarn'):
+        """Log each distinct problem once, then every 100th repeat (at
+        ``level``, the name of a rospy log function)."""
         count = self._logged.get(text, 0)
         self._logged[text] = count + 1
         if count % 100 == 0:
-            rospy.logwarn('%s: %s%s', self.link.port_name, text,
-                          ' (x%d)' % (count + 1) if count else '')
+            getattr(rospy, level)('%s: %s%s', self.link.port_name, text,
+                                  ' (x%d)' % (count + 1) if count else '')
 
     # -- reader -------------------------------------------------------------
     def _read_loop(self):
@@ -133,13 +138,9 @@ class RosserialHost(object):
                     self._handle(self.session.closed())
                     continue
                 for frame in self.parser.feed(data):
-                    reply, events = self.session.on_frame(frame, now, rospy.get_time())
-                    self.link.write(reply)
-                    self._handle(events)
+                    self._carry_out(*self.session.on_frame(frame, now, rospy.get_time()))
                 self._check_version()
-                reply, events = self.session.tick(now)
-                self.link.write(reply)
-                self._handle(events)
+                self._carry_out(*self.session.tick(now))
 
     def _open(self):
         if not self.link.ensure_open():
@@ -151,6 +152,12 @@ class RosserialHost(object):
             self.parser.reset()
             self.link.write(self.session.opened(self._clock()))
         return True
+
+    def _carry_out(self, reply, events):
+        """Events first: a link going down discards the port's unsent bytes,
+        which must not take the topic request that follows with them."""
+        self._handle(events)
+        self.link.write(reply)
 
     def _handle(self, events):
         for event in events:
@@ -183,6 +190,21 @@ class RosserialHost(object):
     def _on_error(self, text):
         self._warn(text)
 
+    def _on_lost_sync(self, count_text):
+        """Every episode: a WARN with the running count, and /diagnostics now."""
+        count, text = count_text
+        self._last_lost_sync = '#%d %s: %s' % (count, time.ctime(), text)
+        rospy.logwarn('%s: lost sync with the device (%d so far): %s',
+                      self.link.port_name, count, text)
+        if self._updater is not None:
+            self._updater.force_update()
+
+    def _given_up(self, kind, name):
+        """The service bridge will not answer the device's call (or stopped
+        waiting for the device's answer): silence counts again."""
+        with self._lock:
+            self.session.given_up(kind, name, self._clock())
+
     def _on_log(self, level_text):
         level, text = level_text
         _LOG.get(level, rospy.loginfo)(text)
@@ -200,6 +222,7 @@ class RosserialHost(object):
             return
         self.counts['params_served'] += 1
         self.link.write(reply)
+        self.session.sent(protocol.ID_PARAMETER_REQUEST, self._clock())
 
     def _on_service(self, kind_part_info):
         self.services.announce(*kind_part_info)
@@ -296,11 +319,13 @@ class RosserialHost(object):
             size = self.session.buffer_size(topic_id)
             if size and len(payload) > size:
                 self.counts['oversize_refused'] += 1
-                self._warn('message on %s of %d bytes is larger than the device\'s '
-                           '%d-byte buffer: dropped' % (name or topic_id, len(payload), size))
+                self._warn('Message from ROS network dropped: message larger than buffer '
+                           '(%s: %d bytes, the device\'s buffer %d)'
+                           % (name or topic_id, len(payload), size), 'logerr')
                 return False
             if not self.link.write(encode(topic_id, payload)):
                 return False
+            self.session.sent(topic_id, self._clock())
             self.counts['frames_out'] += 1
             return True
 
@@ -333,7 +358,10 @@ class RosserialHost(object):
                       stale_dropped=self.outbox.stale_dropped,
                       replaced=self.outbox.replaced, baud=self.link.baud,
                       version_errors=stats.version_errors,
-                      lost_after_s=round(self.session.lost_after(), 3))
+                      lost_after_s=round(self.session.lost_after(), 3),
+                      last_lost_sync=self._last_lost_sync,
+                      device_waits=' '.join('%s %s' % w for w in
+                                            self.session.device_waits(self._clock())) or 'none')
         return values
 
     def diagnostic_status(self):
@@ -346,6 +374,8 @@ class RosserialHost(object):
         status.level = {sessions.UP: DiagnosticStatus.OK,
                         sessions.NEGOTIATING: DiagnosticStatus.WARN}.get(state, DiagnosticStatus.ERROR)
         status.message = 'link %s' % state
+        if self.session.lost_syncs:
+            status.message += ' (lost sync %d times)' % self.session.lost_syncs
         if self.parser.last_version is not None:
             status.level = DiagnosticStatus.ERROR
             status.message = MISMATCHED_PROTOCOL

@@ -1,8 +1,9 @@
 """ROS services to and from a rosserial device (the host's side; ROS edge).
 
 A device's ServiceServer becomes a ``rospy.Service``: a ROS call is sent to
-the device as the request and waits (at most ``timeout`` s, rosserial_python
-waits forever) for the device's response frame. A device's ServiceClient
+the device as the request and waits (at most ``timeout`` s: rosserial_python
+waits forever, but renegotiates after 15 s without a time request, which a
+device in its callback does not send) for the device's response frame. A device's ServiceClient
 becomes a ``rospy.ServiceProxy``: the device's request frames are called on
 a worker thread (never the port reader: a slow service must not stall the
 link) and the response goes back to the device.
@@ -17,14 +18,19 @@ import threading
 import rospy
 import roslib.message
 
+from pirate.link.session import LOST_AFTER_MAX_S
+
 
 class ServiceBridge(object):
     """All services of one device. ``send(topic_id, payload)`` writes a frame
-    (False if the link is not up); ``warn(text)`` logs a problem once."""
+    (False if the link is not up); ``warn(text)`` logs a problem once;
+    ``given_up(kind, name)`` says a device's call of ``name`` gets no answer
+    ('client') or the device's answer is no longer awaited ('server')."""
 
-    def __init__(self, send, warn, timeout=5.0):
+    def __init__(self, send, warn, given_up, timeout=LOST_AFTER_MAX_S):
         self._send = send
         self._warn = warn
+        self._given_up = given_up
         self.timeout = timeout
         self._servers = {}     # name -> _Server
         self._clients = {}     # name -> rospy.ServiceProxy
@@ -81,6 +87,7 @@ class ServiceBridge(object):
                 response = proxy(request)
             except Exception as error:  # genpy and rospy raise several types
                 self._warn('device call of %s failed: %s' % (name, error))
+                self._given_up('client', name)
                 continue
             self.send_to_device('client', 'response', name, response)
 
@@ -103,6 +110,7 @@ class _Server(object):
             if not self._bridge.send_to_device('server', 'request', self._name, request):
                 raise rospy.ServiceException('device link is not up')
             if not self._done.wait(self._bridge.timeout):
+                self._bridge._given_up('server', self._name)
                 raise rospy.ServiceException('device did not answer %s within %.1f s'
                                              % (self._name, self._bridge.timeout))
             response = self._srv._response_class()
