@@ -84,21 +84,6 @@ def test_control_change_published_at_once_and_only_on_change(arrays):
     assert control.get(8) == 7
 
 
-def test_control_tick_resends_the_unchanged_array_once_a_second(arrays):
-    """A reset Mega behind a host that does not re-send latched messages
-    gets the modes back within CONTROL_REFRESH_S."""
-    _, control, _, pubs, _ = arrays
-    control.set_mode('bend_iv', 'torque')
-    sent = len(pubs['control'].sent)
-    t0 = 100.0
-    control.tick(t0)
-    assert len(pubs['control'].sent) == sent + 1 and pubs['control'].sent[-1][7] == 3
-    control.tick(t0 + commands.CONTROL_REFRESH_S / 2)
-    assert len(pubs['control'].sent) == sent + 1
-    control.tick(t0 + commands.CONTROL_REFRESH_S)
-    assert len(pubs['control'].sent) == sent + 2 and pubs['control'].sent[-1] == pubs['control'].sent[-2]
-
-
 def test_control_set_all_publishes_once(arrays):
     _, control, _, pubs, _ = arrays
     codes = [3] * 12

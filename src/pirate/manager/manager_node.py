@@ -27,7 +27,7 @@ import rospy
 from actionlib_msgs.msg import GoalStatus
 
 from pirate import health, names
-from pirate.robot import commands
+from pirate.robot import commands, link_watch
 from pirate.robot.writers import OneWriter
 from pirate.state.assembler import pab_blocker
 from pirate.state.feed import RobotFeed, RobotView
@@ -35,7 +35,7 @@ from pirate.state.clock_ros import silence_clock
 from pirate.panel.mapper_ros import MapperRos
 from pirate.sequencer.guards import BadConfig, GuardBook
 from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, PirateGoal,
-                        PirateResult, PrimitiveStep, RobotState, SetpointArray)
+                        PirateResult, PrimitiveStep, RobotState, SetpointArray, SmallState)
 from pirate.cfg import SequencerConfig
 from pirate.sequencer import tuning
 from pirate.sequencer.primitives import MotionPrimitives
@@ -147,6 +147,9 @@ class PirateManager(object):
                                               self._on_cancel, auto_start=False)
         rospy.Service(names.SERVER_STATUS_SERVICE, ServerStatus, self._status)
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state, queue_size=5)
+        watch = link_watch.LinkWatch()   # the link back: control and limits before any setpoint
+        rospy.Subscriber(names.SMALL_STATE_TOPIC, SmallState, lambda _msg: watch.heard(time.monotonic())
+                         and link_watch.restore(self.control, self.limit), queue_size=50)
         self._writers = OneWriter(rospy.get_name())
         self._panel_client = None       # the panel's PabClient, when this manager has a panel
         self._diagnostics = self._diagnose()
@@ -239,7 +242,6 @@ class PirateManager(object):
             return      # shutting down: the safe hold is the last array sent
         self.setpoint.tick()
         self.limit.tick()
-        self.control.tick(time.monotonic())
         self._publish_progress()
 
     def _start_robot(self):

@@ -9,7 +9,9 @@ Publishing policy (report 4.6):
 - setpoints and limits are *marked* by writers and sent by :meth:`tick`,
   which the owner calls at 10 Hz, so slider bursts never exceed 10 Hz and the
   Mega's watchdog sees a steady stream while the robot is playing;
-- control modes and commands go out at once, on every change;
+- control modes and commands go out at once, on every change; control and
+  limits again whenever the device's link returns, and every second while
+  it streams (:mod:`pirate.robot.link_watch`);
 - :meth:`CommandArray.publish_now` bypasses the 10 Hz pacing, for the safe
   hold only (cancel must reach the wire fast).
 
@@ -29,9 +31,6 @@ import time
 
 from pirate.robot import safety, tables, units
 
-
-#: s between two re-sends of an unchanged control array (Control.tick).
-CONTROL_REFRESH_S = 1.0
 
 class CommandArray(object):
     """A fixed-size command array with thread-safe get/set and paced publish."""
@@ -143,7 +142,6 @@ class Control(CommandArray):
     """The 12-element control-mode array (Table 4.2); changes go out at once."""
 
     size = tables.CONTROL_SIZE
-    _refreshed_at = float('-inf')
 
     def set_mode(self, name, mode):
         """Put element ``name`` in ``mode`` ('pwm', 'torque', ...); publish if changed."""
@@ -184,19 +182,6 @@ class Control(CommandArray):
         """Raw code at ``index``."""
         with self._lock:
             return self._values[index]
-
-    def tick(self, now):
-        """Re-send the array every :data:`CONTROL_REFRESH_S` (``now``: monotonic s).
-
-        Modes go out at once when they change; this refresh is for a device
-        that lost them: a reset Mega re-subscribes behind a host that does
-        not re-send latched messages (rosserial_python holds the boards until
-        control arrives again), so what the boards run matches
-        what the laptop believes within a second, whatever the host."""
-        if now - self._refreshed_at < CONTROL_REFRESH_S:
-            return None
-        self._refreshed_at = now
-        return self._send()
 
     def set_all(self, codes):
         """Write all 12 codes (each checked); publish once if anything changed."""

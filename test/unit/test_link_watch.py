@@ -1,0 +1,85 @@
+"""The manager's link watch: the first Small State after a silence brings
+the laptop's control modes and limits back to the device, before any
+setpoint, whichever host runs the link. No ROS."""
+import threading
+
+import pytest
+
+from pirate.robot import commands, link_watch
+from pirate.robot.link_watch import LinkWatch
+
+
+def test_the_first_message_ever_is_the_link_coming_up():
+    watch = LinkWatch()
+    assert watch.heard(100.0) and watch.returns == 1
+
+
+def test_a_steady_stream_gets_the_state_once_a_second():
+    watch = LinkWatch(silence_s=0.15, refresh_s=1.0)
+    sends = [k * 0.011 for k in range(500) if watch.heard(k * 0.011)]
+    assert sends == pytest.approx([0.0, 1.001, 2.002, 3.003, 4.004, 5.005])
+    assert watch.returns == 1
+
+
+def test_the_first_message_after_a_silence_is_the_link_back_once():
+    watch = LinkWatch(silence_s=0.15, refresh_s=1.0)
+    watch.heard(0.0)
+    assert not watch.heard(0.15)
+    assert watch.heard(0.55)             # an unplug, a stall, a bootloader: no Small State
+    assert not watch.heard(0.56)
+    assert watch.returns == 2
+    stream = [0.56 + k * 0.011 for k in range(1, 100)]
+    assert [t for t in stream if watch.heard(t)] == pytest.approx([1.55])    # a second after the return
+
+
+class Wire(object):
+    """Publishers of the three arrays, all writing one record, in order."""
+
+    def __init__(self):
+        self.sent = []
+
+    def publisher(self, name):
+        wire = self
+
+        class Publisher(object):
+            def publish(self, msg):
+                wire.sent.append((name, msg))
+        return Publisher()
+
+
+def test_restore_sends_control_then_limits_with_the_laptops_values():
+    wire = Wire()
+    control = commands.Control(wire.publisher('control'), list)
+    limit = commands.Limit(wire.publisher('limits'), list)
+    control.set_mode('bend_i', 'torque')
+    limit.set('bend_i', 400)
+    del wire.sent[:]
+    link_watch.restore(control, limit)
+    assert [name for name, _ in wire.sent] == ['control', 'limits']
+    assert wire.sent[0][1] == control.get_all() and wire.sent[1][1] == limit.get_all()
+
+
+def test_no_setpoint_slips_between_control_and_limits():
+    wire = Wire()
+    control = commands.Control(wire.publisher('control'), list)
+    setpoint = commands.Setpoint(wire.publisher('setpoint'), list, control)
+    limit = commands.Limit(wire.publisher('limits'), list)
+    setpoint.enabled = True
+    entered, release = threading.Event(), threading.Event()
+
+    class SlowLimits(object):
+        def publish(self, msg):
+            entered.set()
+            release.wait(5.0)
+            wire.sent.append(('limits', msg))
+    limit._publisher = SlowLimits()   # pylint: disable=protected-access
+    restoring = threading.Thread(target=link_watch.restore, args=(control, limit))
+    restoring.start()
+    assert entered.wait(5.0)
+    ticking = threading.Thread(target=setpoint.tick)
+    ticking.start()
+    ticking.join(0.2)                    # the setpoint waits for the wire lock
+    release.set()
+    restoring.join(5.0)
+    ticking.join(5.0)
+    assert [name for name, _ in wire.sent] == ['control', 'limits', 'setpoint']
