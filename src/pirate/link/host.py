@@ -18,16 +18,15 @@ recreated), services both ways (:mod:`.service_bridge`), parameters from
 the parameter server, logs at their level, time. A message larger than the
 buffer the device announced for that topic is refused and logged at ERROR,
 as rosserial_python does. Every lost sync is a WARN with its running count
-and shows on ``/diagnostics`` at once. The laptop's command state survives the link:
-the latest message of every *latched* publisher the device
+and shows on ``/diagnostics`` at once. The laptop's command state survives
+the link: the latest message of every *latched* publisher the device
 subscribes to is re-sent whenever the link comes up and whenever the
 device announces that subscriber again (after a reset), so control modes
 reach the boards before any setpoint.
 
 Diagnostics through diagnostic_updater (task "serial link") at 1 Hz and at
-every lost sync; a
-frame of another rosserial protocol version makes it ERROR with
-rosserial_python's words, and is logged as an error.
+every lost sync; a frame of another rosserial protocol version makes it
+ERROR with rosserial_python's words, and is logged as an error.
 """
 import io
 import threading

@@ -161,7 +161,7 @@ class HostSession(object):
         a wait past its deadline (:data:`WAITS`) is dropped."""
         for key, deadline in list(self._waits.items()):
             if deadline is not None and now > deadline:
-                del self._waits[key]
+                self._waits.pop(key, None)     # the diagnostics thread may ask too
         return sorted(self._waits)
 
     def _wait(self, kind, name, now):
