@@ -5,7 +5,10 @@ The traces hold what the real rosserial_python and a real ros_lib device
 said to each other, and what our serial_node and our firmware said to them.
 These tests hold our codec, session and firmware bytes against them:
 negotiation, time sync, parameters, a service call each way, log
-forwarding, version mismatch, TX_STOP, and lost-sync timing. No ROS master.
+forwarding, version mismatch, TX_STOP, and lost-sync timing, also while a
+device waits 1.5 s in a ServiceClient call or 1 s in a getParam of a
+missing parameter (the session replays what the device did, tick by tick).
+No ROS master.
 """
 import os
 import struct
