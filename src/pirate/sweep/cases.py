@@ -31,8 +31,8 @@ class Sweep(object):
 
 
 def key_of(params, names):
-    """The case's key: its parameters in ``names`` order, ``name=value`` joined by spaces."""
-    return ' '.join('%s=%s' % (name, _text(params[name])) for name in names if name in params)
+    """The case's key: its parameters in ``names`` order, ``name=value`` joined by spaces (None left out)."""
+    return ' '.join('%s=%s' % (name, _text(params[name])) for name in names if params.get(name) is not None)
 
 
 def _text(value):

@@ -50,15 +50,17 @@ def _number(value, form='%.1f'):
 def table(records, width=44):
     """The sweep's table: a line per group, a line of its figures under it."""
     columns = outcomes(records)
-    names = [('FALSE' if c == FALSE_SUCCESS else c[:7]) for c in columns]
-    lines = ['%-*s %4s %7s %s  %s' % (width, 'case', 'n', 'success', ' '.join('%7s' % n for n in names),
+    names = [('FALSE' if c == FALSE_SUCCESS else c) for c in columns]
+    widths = [max(5, len(name)) for name in names]
+    lines = ['%-*s %4s %7s %s  %s' % (width, 'case', 'n', 'success', ' '.join('%*s' % w for w in zip(widths, names)),
                                      'median / worst s, median primitives')]
     for name, runs in grouped(records):
         counts = [sum(1 for r in runs if r['outcome'] == c) for c in columns]
         median, worst, prims = figures_of(runs)
         lines.append('%-*s %4d %6.0f%% %s  %s / %s s, %s' % (
-            width, name[:width], len(runs), 100.0 * counts[0] / len(runs), ' '.join('%7d' % c for c in counts),
-            _number(median), _number(worst), _number(prims, '%.0f')))
+            width, name[:width], len(runs), 100.0 * counts[0] / len(runs),
+            ' '.join('%*d' % wc for wc in zip(widths, counts)), _number(median), _number(worst),
+            _number(prims, '%.0f')))
         extra = bench_figures(runs)
         if extra:
             lines.append('    ' + extra)
