@@ -1,6 +1,5 @@
 """One real twin case through the sweep runner: a short Clamp Straight of
 bench/pab_clamp_sweep, in a worker process of a local Dask cluster."""
-import argparse
 import io
 import os
 from importlib.machinery import SourceFileLoader

@@ -61,21 +61,30 @@ def table(records, width=44):
             width, name[:width], len(runs), 100.0 * counts[0] / len(runs),
             ' '.join('%*d' % wc for wc in zip(widths, counts)), _number(median), _number(worst),
             _number(prims, '%.0f')))
-        extra = bench_figures(runs)
-        if extra:
-            lines.append('    ' + extra)
+        lines += wrapped(bench_figures(runs))
     return lines
 
 
+def wrapped(parts, width=110):
+    """``parts`` joined by '; ' into indented lines of at most about ``width`` characters."""
+    lines, line = [], ''
+    for part in parts:
+        if line and len(line) + len(part) > width:
+            lines.append('    ' + line + ';')
+            line = ''
+        line += ('; ' if line else '') + part
+    return lines + (['    ' + line] if line else [])
+
+
 def bench_figures(runs):
-    """'name median m [low, high]; ...' of the bench's own figures in these runs."""
+    """['name median m [low, high]', ...] of the bench's own figures in these runs."""
     names = sorted({name for r in runs for name in r.get('figures', {})})
     parts = []
     for name in names:
         values = [r['figures'][name] for r in runs if r.get('figures', {}).get(name) is not None]
         if values:
             parts.append('%s %.4g [%.4g, %.4g]' % (name, statistics.median(values), min(values), max(values)))
-    return '; '.join(parts)
+    return parts
 
 
 def cases_lines(records):
