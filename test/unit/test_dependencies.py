@@ -29,6 +29,7 @@ MODULES = {
     'pygame': 'python3-pygame', 'numpy': 'python3-numpy', 'matplotlib': 'python3-matplotlib',
     'PIL': 'python3-pil', 'hypothesis': 'python3-hypothesis', 'pytest': 'python3-pytest',
     'diagnostic_updater': 'python3-diagnostic-updater', 'dynamic_reconfigure': 'python3-dynamic-reconfigure',
+    'distributed': 'python3-distributed',
 }
 #: Third-party modules from PyPI (scripts/pip-requirements.txt, installed
 #: into .venv by scripts/ensure_deps) and their rosdep keys in package.xml.
