@@ -91,13 +91,21 @@ def _die_with_parent():
         pass
 
 
+def here(bench_path):
+    """``bench_path``, or where this machine's checkout has that bench (a worker on another machine)."""
+    if os.path.exists(bench_path):
+        return bench_path
+    top = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+    return os.path.join(top, 'bench', os.path.basename(bench_path))
+
+
 def main(argv=None):
     bench_path, function, result_path = (argv or sys.argv[1:])[:3]
     _die_with_parent()
     given = json.load(sys.stdin)
     case = given['case']
     sys.stdout = sys.stderr         # a bench's prints are not the result
-    bench = SourceFileLoader('sweep_bench', bench_path).load_module()
+    bench = SourceFileLoader('sweep_bench', here(bench_path)).load_module()
     try:
         results = getattr(bench, function)(case['params'], case['seed'], given['settings'])
     except Exception:       # noqa: BLE001 - the runner records it (after one retry)
