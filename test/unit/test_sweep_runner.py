@@ -118,6 +118,7 @@ def test_ctrl_c_keeps_the_records_so_far_and_resume_runs_only_the_rest(tmp_path,
     out = io.StringIO()
     assert cli.main(fake.SWEEP, build(behaviours), sweep_args(path, '--resume'), out) == 0
     assert '(2 done before, skipped)' in out.getvalue()
+    assert '3/5 cases, success 3/3 runs' in out.getvalue()      # the records of before count
     _, found = records.read(path)
     assert sorted(r['params']['n'] for r in found) == [0, 1, 2, 3, 4]
     assert 'fake even' in out.getvalue()       # the table, from the records

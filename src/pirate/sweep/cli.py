@@ -42,18 +42,20 @@ def main(sweep, build, args, stream=sys.stdout):
         sys.stderr.write('%s: %s\n' % (sweep.name, bad))
         return BAD_INPUT
     stream.write('%s: %d cases%s, %s; records: %s\n' % (
-        sweep.name, len(todo) + len(done), ' (%d done before, skipped)' % len(done) if done else '',
+        sweep.name, len(todo) + len(records.finished(done)),
+        ' (%d done before, skipped)' % len(records.finished(done)) if done else '',
         'on %s' % args.scheduler if args.scheduler else 'one after the other' if args.workers == 0
         else '%d local worker processes' % engine.workers(), path))
     stream.write(sweep_cases.seeds_line(todo, args.seed) + '\n')
     stream.flush()
-    return execute(sweep, todo, engine, path, head, len(done), stream)
+    return execute(sweep, todo, engine, path, head, done, stream)
 
 
-def execute(sweep, todo, engine, path, head, already, stream):
-    """Run ``todo`` on ``engine`` into ``path``; Ctrl-C stops the workers and keeps the records."""
+def execute(sweep, todo, engine, path, head, done, stream):
+    """Run ``todo`` on ``engine`` into ``path`` (``done``: the records of cases
+    finished before); Ctrl-C stops the workers and keeps the records."""
     writer = records.Writer(path, head)
-    progress = Progress(len(todo) + already, stream, stream.isatty(), already)
+    progress = Progress(len(todo) + len({r['key'] for r in done}), stream, stream.isatty(), done)
     started = time.monotonic()
     try:
         lost = runner.run(todo, engine, writer.write, progress, provenance())
@@ -71,7 +73,8 @@ def execute(sweep, todo, engine, path, head, already, stream):
 
 
 def prepare(sweep, build, args):
-    """(cases to run, settings, records path, header to write or None, keys done before); raises on bad input."""
+    """(cases to run, settings, records path, header to write or None, records of the cases done before);
+    raises on bad input."""
     filters = sweep_cases.parse_filters(args.case, sweep)
     every, settings = build(args)
     every = sweep_cases.unique(every)
@@ -88,7 +91,7 @@ def prepare(sweep, build, args):
         return _resumed(chosen, settings, path, head, args)
     if os.path.exists(path):
         raise sweep_cases.SweepError('%s exists: --resume to continue it, or another --out' % path)
-    return chosen, settings, path, head, set()
+    return chosen, settings, path, head, []
 
 
 def _resumed(chosen, settings, path, head, args):
@@ -99,7 +102,7 @@ def _resumed(chosen, settings, path, head, args):
         raise sweep_cases.SweepError('%s was written by %s with %s; these options give %s: resume it with the '
                                      'same options' % (path, (before or {}).get('name'), before, head['sweep']))
     done = records.finished(found)
-    return [one for one in chosen if one['key'] not in done], settings, path, None, done
+    return [one for one in chosen if one['key'] not in done], settings, path, None, found
 
 
 def make_engine(sweep, args, settings):

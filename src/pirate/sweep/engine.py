@@ -10,12 +10,26 @@ threads_per_worker, processes)``, ``Client``, ``as_completed``.
 """
 import collections
 import os
+import signal
+import threading
 
 from pirate.sweep.cases import SweepError
 from pirate.sweep.child import run_case
 
 #: Wall seconds to reach a scheduler given with ``--scheduler``.
 CONNECT_S = 10
+
+
+def _deaf_to_ctrl_c(start):
+    """``start()`` with Ctrl-C ignored by the processes it starts (they inherit it):
+    a Ctrl-C stops the sweep here, which then closes the workers in order."""
+    if threading.current_thread() is not threading.main_thread():
+        return start()
+    before = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        return start()
+    finally:
+        signal.signal(signal.SIGINT, before)
 
 
 class Serial(object):
@@ -55,8 +69,8 @@ class Dask(object):
             except Exception as unreachable:    # noqa: BLE001 - OSError, TimeoutError: Dask's differ by release
                 raise SweepError('cannot reach the Dask scheduler at %s: %s' % (scheduler, unreachable))
         else:
-            self._cluster = LocalCluster(n_workers=workers or os.cpu_count(), threads_per_worker=1,
-                                         processes=True, dashboard_address=None)
+            self._cluster = _deaf_to_ctrl_c(lambda: LocalCluster(
+                n_workers=workers or os.cpu_count(), threads_per_worker=1, processes=True, dashboard_address=None))
             self.client = Client(self._cluster)
         self._cases, self._futures, self._all = {}, as_completed([]), []
         self._submitted = 0

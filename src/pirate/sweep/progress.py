@@ -15,11 +15,13 @@ def clock_text(seconds):
 
 
 class Progress(object):
-    """Counts finished cases of ``total`` (``already``: finished before a resume)."""
+    """Counts finished cases of ``total`` (``before``: the records of the cases finished before a resume)."""
 
-    def __init__(self, total, stream, tty, already=0, clock=time.monotonic):
-        self.total, self.done, self.succeeded, self.runs = total, already, 0, 0
-        self._already = already
+    def __init__(self, total, stream, tty, before=(), clock=time.monotonic):
+        already = len({record['key'] for record in before})
+        self.total, self.done, self._already = total, already, already
+        self.runs = len(before)
+        self.succeeded = sum(1 for record in before if record['outcome'] == 'succeeded')
         self._stream, self._tty, self._clock, self._start = stream, tty, clock, clock()
         self._width = 0
 
