@@ -44,11 +44,19 @@ def main(sweep, build, args, stream=sys.stdout):
     stream.write('%s: %d cases%s, %s; records: %s\n' % (
         sweep.name, len(todo) + len(records.finished(done)),
         ' (%d done before, skipped)' % len(records.finished(done)) if done else '',
-        'on %s' % args.scheduler if args.scheduler else 'one after the other' if args.workers == 0
-        else '%d local worker processes' % engine.workers(), path))
+        where(args, engine), path))
     stream.write(sweep_cases.seeds_line(todo, args.seed) + '\n')
     stream.flush()
     return execute(sweep, todo, engine, path, head, done, stream)
+
+
+def where(args, engine):
+    """Where the cases run, as the first line says it."""
+    if args.scheduler:
+        workers = engine.workers()
+        return 'on %s, %s' % (args.scheduler, '%d workers' % workers if workers
+                              else 'no worker yet: the cases wait for one')
+    return 'one after the other' if args.workers == 0 else '%d local worker processes' % engine.workers()
 
 
 def execute(sweep, todo, engine, path, head, done, stream):
