@@ -98,3 +98,10 @@ def test_the_report_command_prints_the_table_or_the_comparison(tmp_path):
     assert bench.main(paths, out) == 0
     assert '0 only in B' in out.getvalue() and '2 only in A' in out.getvalue()
     assert bench.main([str(tmp_path / 'none.jsonl')], io.StringIO()) == 2
+
+
+def test_the_table_keeps_the_order_the_sweep_declared_whatever_order_the_cases_finished_in():
+    late, early = dict(record('b', 'succeeded', 3.0, group='second'), index=1), \
+        dict(record('a', 'succeeded', 2.0, group='first'), index=0)
+    lines = report.table([late, early])
+    assert lines[1].startswith('first') and lines[2].startswith('second')

@@ -85,7 +85,7 @@ def prepare(sweep, build, args):
     raises on bad input."""
     filters = sweep_cases.parse_filters(args.case, sweep)
     every, settings = build(args)
-    every = sweep_cases.unique(every)
+    every = [dict(one, index=index) for index, one in enumerate(sweep_cases.unique(every))]
     chosen = sweep_cases.select(every, filters)
     if not chosen:
         raise sweep_cases.SweepError('no case matches --case %s' % ' '.join(args.case))

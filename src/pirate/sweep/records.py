@@ -5,6 +5,7 @@ settings, its seed); then one record per case (per variant of a case), as
 it finished. A record holds:
 
 - ``key``, ``group``, ``variant``, ``params``, ``seed``: the case;
+  ``index``, its place in the sweep (the table's order);
 - ``outcome`` ('succeeded', 'FALSE success', 'refused', 'aborted', 'hang',
   'crashed', or a bench's own word) and ``reason``;
 - ``robot_s`` (the run's duration, robot seconds), ``primitives`` (the
@@ -21,8 +22,9 @@ import io
 import json
 import os
 
-#: Fields that say where and how long a case ran, not what it gave: left out when records are compared.
-WALL_FIELDS = ('wall_s', 'host', 'attempts')
+#: Fields that say where, how long and in what place of the sweep a case ran, not what it gave:
+#: left out when records are compared.
+WALL_FIELDS = ('wall_s', 'host', 'attempts', 'index')
 #: What a record holds besides the case; a case function's dict may set these.
 RESULT_FIELDS = ('variant', 'outcome', 'reason', 'robot_s', 'primitives', 'truth', 'figures')
 
@@ -38,7 +40,7 @@ def complete(case, result, provenance):
               'params': case['params'], 'seed': case['seed'], 'outcome': result['outcome'],
               'reason': result.get('reason', ''), 'robot_s': result.get('robot_s'),
               'primitives': list(result.get('primitives', ())), 'truth': result.get('truth', {}),
-              'figures': result.get('figures', {})}
+              'figures': result.get('figures', {}), 'index': case.get('index')}
     record.update(provenance)
     return record
 

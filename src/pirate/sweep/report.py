@@ -22,11 +22,16 @@ def label(record):
 
 
 def grouped(records):
-    """[(label, records)] in the order their first record came."""
+    """[(label, records)] in the order the sweep declared their cases (else their records came)."""
     groups = {}
-    for record in records:
+    for record in sorted(records, key=_place):
         groups.setdefault(label(record), []).append(record)
     return list(groups.items())
+
+
+def _place(record):
+    index = record.get('index')
+    return (0, index) if index is not None else (1, 0)
 
 
 def outcomes(records):
