@@ -73,16 +73,13 @@ class Dask(object):
                 n_workers=workers or os.cpu_count(), threads_per_worker=1, processes=True, dashboard_address=None))
             self.client = Client(self._cluster)
         self._cases, self._futures, self._all = {}, as_completed([]), []
-        self._submitted = 0
 
     def workers(self):
         return len(self.client.scheduler_info().get('workers', {}))
 
     def submit(self, case):
         bench_path, function, settings, time_limit_s = self._task
-        self._submitted += 1
-        future = self.client.submit(run_case, bench_path, function, case, settings, time_limit_s, pure=False,
-                                    key='case-%d' % self._submitted)
+        future = self.client.submit(run_case, bench_path, function, case, settings, time_limit_s, pure=False)
         self._cases[future.key] = case
         self._all.append(future)
         self._futures.add(future)
