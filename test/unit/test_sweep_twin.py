@@ -13,7 +13,8 @@ CLAMP_SWEEP = SourceFileLoader('pab_clamp_sweep', BENCH).load_module()
 def test_a_clamp_straight_runs_in_a_worker_and_is_judged_by_ground_truth(tmp_path):
     path = str(tmp_path / 'clamp.jsonl')
     args = CLAMP_SWEEP.parser().parse_args(['--diameters', '90', '--targets', 'straight', '--poses', 'straight',
-                                            '--first', '90', '--step', '180', '--no-cancel', '--workers', '1', '--out', path])
+                                            '--first', '90', '--step', '180', '--no-cancel', '--workers', '1',
+                                            '--out', path])
     out = io.StringIO()
     assert cli.main(CLAMP_SWEEP.SWEEP, CLAMP_SWEEP.build, args, out) == 0, out.getvalue()
     _, found = records.read(path)

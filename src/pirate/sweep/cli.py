@@ -75,8 +75,9 @@ def execute(sweep, todo, engine, path, head, done, stream):
         engine.close()
         writer.close()
     stream.write('\n'.join(report.table(records.read(path)[1])) + '\n')
-    stream.write('%d cases in %s wall%s; records: %s\n' % (len(todo), clock_text(time.monotonic() - started),
-                                                         ', %d crashed or hung' % lost if lost else '', path))
+    lost_text = ', %d crashed or hung' % lost if lost else ''
+    stream.write('%d cases in %s wall%s; records: %s\n'
+                 % (len(todo), clock_text(time.monotonic() - started), lost_text, path))
     return 0
 
 
@@ -92,8 +93,8 @@ def prepare(sweep, build, args):
     errors = sweep.check(chosen, settings)
     if errors:
         raise sweep_cases.SweepError('; '.join(errors))
-    path = args.out or os.path.join('sweeps', '%s_%s.jsonl' % (sweep.name, time.strftime('%Y%m%d-%H%M%S',
-                                                                                          time.gmtime())))
+    stamp = time.strftime('%Y%m%d-%H%M%S', time.gmtime())
+    path = args.out or os.path.join('sweeps', '%s_%s.jsonl' % (sweep.name, stamp))
     head = records.header(sweep.name, settings, args.seed)
     if args.resume:
         return _resumed(chosen, settings, path, head, args)

@@ -31,7 +31,7 @@ class Progress(object):
         left = (self._clock() - self._start) / ran * (self.total - self.done) if ran else None
         success = ', success %d/%d runs' % (self.succeeded, self.runs) if self.runs else ''
         return '%d/%d cases%s, %s left' % (self.done, self.total, success,
-                                          clock_text(left) if left is not None else 'time')
+                                           clock_text(left) if left is not None else 'time')
 
     def finished(self, found):
         """A case finished with the records ``found``."""

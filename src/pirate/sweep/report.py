@@ -57,8 +57,8 @@ def table(records, width=44):
     columns = outcomes(records)
     names = [('FALSE' if c == FALSE_SUCCESS else c) for c in columns]
     widths = [max(5, len(name)) for name in names]
-    lines = ['%-*s %4s %7s %s  %s' % (width, 'case', 'n', 'success', ' '.join('%*s' % w for w in zip(widths, names)),
-                                     'median / worst s, median primitives')]
+    heads = ' '.join('%*s' % w for w in zip(widths, names))
+    lines = ['%-*s %4s %7s %s  %s' % (width, 'case', 'n', 'success', heads, 'median / worst s, median primitives')]
     for name, runs in grouped(records):
         counts = [sum(1 for r in runs if r['outcome'] == c) for c in columns]
         median, worst, prims = figures_of(runs)
@@ -107,8 +107,7 @@ def _differs(a, b):
 
 def compare(a_records, b_records, width=36):
     """Sweep A against sweep B: per group, then per case whose outcome differs."""
-    lines = ['%-*s %9s %9s %9s %15s %15s' % (width, 'case (A -> B)', 'n', 'success', 'FALSE', 'median s',
-                                              'worst s')]
+    lines = ['%-*s %9s %9s %9s %15s %15s' % (width, 'case (A -> B)', 'n', 'success', 'FALSE', 'median s', 'worst s')]
     a_groups, b_groups = dict(grouped(a_records)), dict(grouped(b_records))
     names = [n for n, _ in grouped(a_records)] + [n for n, _ in grouped(b_records) if n not in a_groups]
     for name in names:
@@ -141,5 +140,5 @@ def case_differences(a_records, b_records):
             _number(a[key].get('robot_s')), _number(b[key].get('robot_s')), b[key].get('reason', '')[:80]))
     for key in slower:
         lines.append('  %s%s: %s, %s s -> %s s' % (key[0], ' ' + key[1] if key[1] else '', a[key]['outcome'],
-                                                  _number(a[key].get('robot_s')), _number(b[key].get('robot_s'))))
+                                                   _number(a[key].get('robot_s')), _number(b[key].get('robot_s'))))
     return lines

@@ -37,4 +37,3 @@ def run(cases, engine, write, progress, provenance):
         progress.finished(found)
     progress.end()
     return lost
-
