@@ -46,10 +46,19 @@ def run_case(bench_path, function, case, settings, time_limit_s):
             return 'crashed', _last_words(child.returncode, err)
         with open(result_path) as source:
             found = json.load(source)
-        wall_s = time.monotonic() - started
+        wall_s, worker = time.monotonic() - started, _worker()
         for record in found:
-            record['wall_s'] = round(wall_s, 1)
+            record.update(wall_s=round(wall_s, 1), worker=worker)
         return 'ok', found
+
+
+def _worker():
+    """The address of the Dask worker running this, or None (no Dask)."""
+    try:
+        from distributed import get_worker
+        return get_worker().address
+    except (ImportError, ValueError):
+        return None
 
 
 def _child_env():

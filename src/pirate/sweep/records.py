@@ -13,7 +13,8 @@ it finished. A record holds:
   verdict, ``verdict`` true / false / null, and what it read), ``figures``
   (the bench's numbers: name -> number);
 - ``commit``, ``mujoco``: the code and engine that ran it; ``attempts``;
-  ``wall_s`` and ``host`` (where and how long: not part of the result).
+  ``wall_s``, ``host`` and ``worker`` (how long, on which machine and Dask
+  worker: not part of the result).
 
 Any JSON reader opens the file (``python3 -m json.tool``, pandas'
 ``read_json(lines=True)``, ``jq``).
@@ -24,7 +25,7 @@ import os
 
 #: Fields that say where, how long and in what place of the sweep a case ran, not what it gave:
 #: left out when records are compared.
-WALL_FIELDS = ('wall_s', 'host', 'attempts', 'index')
+WALL_FIELDS = ('wall_s', 'host', 'worker', 'attempts', 'index')
 #: What a record holds besides the case; a case function's dict may set these.
 RESULT_FIELDS = ('variant', 'outcome', 'reason', 'robot_s', 'primitives', 'truth', 'figures')
 
