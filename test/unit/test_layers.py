@@ -39,6 +39,7 @@ ALLOWED = {
     'viz': {'robot', 'state', 'sequencer', 'supervisory', 'world', 'sim'},   # sim: the twin's pipe geometry
     'manager': {'robot', 'state', 'sequencer', 'panel'},
     'docs': {'robot', 'state', 'sequencer', 'supervisory', 'world', 'panel', 'link', 'sim', 'viz'},
+    'sweep': {'world'},   # the runner of the twin benches; a bench's cases load it
     'testing': {'robot', 'state', 'sequencer', 'supervisory', 'world', 'panel', 'link', 'sim', 'viz',
                 'manager'},
 }
