@@ -8,7 +8,7 @@ SHELL := /bin/bash
 # packages plus MuJoCo from PyPI, made by scripts/ensure_deps).
 VENV := $(CURDIR)/.venv
 export PATH := $(VENV)/bin:/usr/bin:/bin:/usr/sbin:/sbin:$(PATH)
-# Loopback unless the user chose otherwise (README "Running across machines").
+# Loopback unless the user chose otherwise (doc/interfaces.md "ROS networking").
 export ROS_IP ?= 127.0.0.1
 export ROS_HOSTNAME ?= 127.0.0.1
 export PYTHONDONTWRITEBYTECODE := 1
