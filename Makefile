@@ -38,7 +38,7 @@ demo: build
 	@$(ENV) bash scripts/demo
 
 test: build
-	@$(ENV) bash scripts/run_tests
+	@$(ENV) WS=$(WS) bash scripts/run_tests
 
 test-unit: build
 	@$(ENV) python3 -m pytest -q test/unit
@@ -46,8 +46,9 @@ test-unit: build
 test-rostest: build
 	@$(ENV) bash scripts/run_rostests
 
+# catkin_lint, flake8 (setup.cfg), yamllint (.yamllint) on config/, roslaunch-check.
 lint: build
-	@$(ENV) catkin_lint -W2 --strict --ignore package_path_name $(CURDIR)
+	@$(ENV) WS=$(WS) bash scripts/run_lint
 
 # The tables in doc/ generated from the code (pirate.docs): rewrites them in place.
 docs:
