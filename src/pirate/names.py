@@ -1,4 +1,4 @@
-"""Topic, service and action names, chosen once (README "Interfaces").
+"""Topic, service and action names, chosen once (doc/interfaces.md).
 
 The array and state topics are those of the report and the author's code
 (SPEC 3, Fig 5.1): a Mega flashed for the original system subscribes to

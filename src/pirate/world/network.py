@@ -2,7 +2,7 @@
 
 Pure (no ROS, no MuJoCo): the physics twin (pirate.sim.twin_model) builds
 its walls from :class:`Network`, and the supervisory layer can read the same
-file as its pipe map. The format is documented in the README ("World
+file as its pipe map. The format is documented in doc/twin.md ("World
 format"); in short::
 
     name: network_90
