@@ -2,8 +2,8 @@
 
 Each relative link and ``#section`` anchor in README.md, CONTRIBUTING.md and
 doc/*.md must resolve: the file exists, and the anchor is a heading of it
-by GitHub's slug rules. Each ``make X`` the README names is a Makefile
-target; each node and launch file of the package is in the README's table.
+by GitHub's slug rules. Each ``make X`` the README or CONTRIBUTING.md
+names is a Makefile target; each node and launch file of the package is in the README's table.
 """
 import glob
 import io
@@ -77,7 +77,7 @@ def test_every_link_and_anchor_resolves(page):
 
 
 def test_every_make_target_the_readme_names_exists():
-    named = set(re.findall(r'\bmake ([a-z][\w-]*)', _read('README.md')))
+    named = set(re.findall(r'\bmake ([a-z][\w-]*)', _read('README.md') + _read('CONTRIBUTING.md')))
     targets = set(re.findall(r'^([\w-]+)\s*:', _read('Makefile'), re.M))
     assert named, 'the README names no make target'
     assert sorted(named - targets) == []
