@@ -17,6 +17,7 @@ import os
 import re
 
 from pirate import paths
+from pirate.panel import doc_table
 from pirate.sequencer.pabs import clamp, drive, home, junction_table
 from pirate.sequencer.pabs.table_doc import markdown
 
@@ -25,6 +26,7 @@ GENERATED = (
     ('doc/sequencer.md', 'drive-table', lambda: markdown(drive.MACHINE)),
     ('doc/sequencer.md', 'home-table', lambda: markdown(home.MACHINE)),
     ('doc/sequencer.md', 'junction-table', lambda: markdown(junction_table.MACHINE)),
+    ('doc/panel.md', 'panel-controls', doc_table.generate),
 )
 
 BEGIN = '<!-- generated: %s (make docs) -->'
