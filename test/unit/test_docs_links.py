@@ -20,6 +20,7 @@ FENCE = re.compile(r'^ {0,3}(```|~~~).*?^ {0,3}\1[^\n]*$', re.M | re.S)
 CODE_SPAN = re.compile(r'(`+)(.+?)\1', re.S)
 LINK = re.compile(r'!?\[(?:[^\[\]]|\[[^\]]*\])*\]\(\s*<?([^)\s>]+)>?(?:\s+"[^"]*")?\s*\)')
 HEADING = re.compile(r'^ {0,3}#{1,6}\s+(.*?)\s*#*\s*$', re.M)
+HTML_ANCHOR = re.compile(r'<a\s+(?:id|name)="([^"]+)"')
 EXTERNAL = re.compile(r'^[a-z][a-z0-9+.-]*:', re.I)
 
 
@@ -42,9 +43,11 @@ def slug(heading):
 
 
 def anchors(path):
-    """Every anchor of a Markdown file's headings; repeated ones get -1, -2, ..."""
-    found, seen = set(), {}
-    for heading in HEADING.findall(FENCE.sub('', _read(path))):
+    """Every anchor of a Markdown file: its headings' (repeated ones get -1,
+    -2, ...) and its HTML ``<a id="...">`` ones (a table row's)."""
+    text = FENCE.sub('', _read(path))
+    found, seen = set(HTML_ANCHOR.findall(text)), {}
+    for heading in HEADING.findall(text):
         base = slug(heading)
         count = seen.get(base, 0)
         seen[base] = count + 1
@@ -103,8 +106,8 @@ def test_anchors_follow_githubs_slug_rules(heading, anchor):
 
 def test_a_link_to_a_missing_page_or_heading_is_reported(tmp_path, monkeypatch):
     (tmp_path / 'doc').mkdir()
-    (tmp_path / 'doc' / 'a.md').write_text(u'# A\n\n## Real section\n\n'
-                                           u'[b](b.md) [real](#real-section) [gone](#gone) '
+    (tmp_path / 'doc' / 'a.md').write_text(u'# A\n\n## Real section\n\n| <a id="row"></a>row |\n\n'
+                                           u'[b](b.md) [real](#real-section) [row](#row) [gone](#gone) '
                                            u'[web](https://example.org) `[code](nowhere.md)`\n')
     monkeypatch.setitem(globals(), 'ROOT', str(tmp_path))
     assert broken('doc/a.md') == ['b.md: no file doc/b.md', '#gone: no heading #gone in doc/a.md']
