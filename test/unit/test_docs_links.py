@@ -2,7 +2,8 @@
 
 Each relative link and ``#section`` anchor in README.md, CONTRIBUTING.md and
 doc/*.md must resolve: the file exists, and the anchor is a heading of it
-by GitHub's slug rules. Each ``make X`` the README or CONTRIBUTING.md
+by GitHub's slug rules (or a row's ``<a id>``); each repository path they
+name in a code span (`src/...`, `config/...`) exists. Each ``make X`` the README or CONTRIBUTING.md
 names is a Makefile target; each node and launch file of the package is in the README's table.
 """
 import glob
@@ -22,6 +23,9 @@ LINK = re.compile(r'!?\[(?:[^\[\]]|\[[^\]]*\])*\]\(\s*<?([^)\s>]+)>?(?:\s+"[^"]*
 HEADING = re.compile(r'^ {0,3}#{1,6}\s+(.*?)\s*#*\s*$', re.M)
 HTML_ANCHOR = re.compile(r'<a\s+(?:id|name)="([^"]+)"')
 EXTERNAL = re.compile(r'^[a-z][a-z0-9+.-]*:', re.I)
+#: A repository path in a code span: `src/pirate/...`, `config/...` (not a pattern with <, {, * or $).
+TOP_DIRS = 'src|config|launch|bench|test|scripts|firmware|doc|urdf|rviz|nodes|msg|srv|action|cfg'
+CODE_PATH = re.compile(r'`((?:%s)/[^`\s<{*$]*)`' % TOP_DIRS)
 
 
 def _read(path):
@@ -79,6 +83,17 @@ def test_every_link_and_anchor_resolves(page):
     assert broken(page) == []
 
 
+def missing_paths(page):
+    """The repository paths ``page`` names in code spans that do not exist."""
+    return [path for path in CODE_PATH.findall(_read(page))
+            if not os.path.exists(os.path.join(ROOT, path))]
+
+
+@pytest.mark.parametrize('page', PAGES)
+def test_every_file_a_page_names_exists(page):
+    assert missing_paths(page) == []
+
+
 def test_every_make_target_the_readme_names_exists():
     named = set(re.findall(r'\bmake ([a-z][\w-]*)', _read('README.md') + _read('CONTRIBUTING.md')))
     targets = set(re.findall(r'^([\w-]+)\s*:', _read('Makefile'), re.M))
@@ -111,3 +126,12 @@ def test_a_link_to_a_missing_page_or_heading_is_reported(tmp_path, monkeypatch):
                                            u'[web](https://example.org) `[code](nowhere.md)`\n')
     monkeypatch.setitem(globals(), 'ROOT', str(tmp_path))
     assert broken('doc/a.md') == ['b.md: no file doc/b.md', '#gone: no heading #gone in doc/a.md']
+
+
+def test_a_moved_file_a_page_names_is_reported(tmp_path, monkeypatch):
+    (tmp_path / 'doc').mkdir()
+    (tmp_path / 'src').mkdir()
+    (tmp_path / 'src' / 'here.py').write_text(u'')
+    (tmp_path / 'doc' / 'a.md').write_text(u'`src/here.py`, `src/gone.py`, `config/guards_<mm>.yaml`\n')
+    monkeypatch.setitem(globals(), 'ROOT', str(tmp_path))
+    assert missing_paths('doc/a.md') == ['src/gone.py']
