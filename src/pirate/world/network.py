@@ -20,6 +20,8 @@ format"); in short::
       - {type: step, at_mm: 600, height_mm: 4}     # at_mm along the travel path
       - {type: reduction, at_mm: 900, diameter_mm: 80}
       - {type: debris, at_mm: 300, size_mm: 6}
+    defects:                         # what an inspection looks for (drawn, not touched)
+      - {type: leak, segment: 1, at_mm: 300, clock: 10, size_mm: 12}
     start: {at_mm: 200}              # where the robot's middle starts
     points:                          # named places on the path (the mission's map)
       - {name: launch_pit, at_mm: 200}
@@ -30,6 +32,13 @@ on with the branch open to ``side``, or with ``leave: branch`` turns to
 ``side`` into the branch, the run's far end (ahead) open; ``enter: branch``
 turns to ``side`` into the run, its other end open (it cannot leave by the
 branch it came in by).
+
+A defect lies in a straight segment: ``segment`` counts the straight
+pieces from 0 in travel order, ``at_mm`` is its distance from that
+segment's start, ``clock`` its position round the wall (1-12, fractions
+allowed) seen looking along the travel direction, 12 at the top, 3 on the
+right, and ``size_mm`` its extent (a hole's or patch's diameter, a crack's
+or pool's length, a joint's offset, a branch's reach into the pipe).
 
 Each piece has an entry frame; its exit frame is where the next piece
 starts. Frames are (origin, 3x3 rotation as rows of the x/y/z axes) in
@@ -57,6 +66,10 @@ OBSTACLE_KEYS = {
     'reduction': {'at_mm': True, 'diameter_mm': True, 'length_mm': False},
     'debris': {'at_mm': True, 'size_mm': True},
 }
+DEFECT_KEYS = {kind: {'segment': True, 'at_mm': True, 'clock': True, 'size_mm': True}
+               for kind in ('leak', 'crack', 'corrosion', 'deposit', 'water', 'displaced_joint', 'intruding_branch')}
+#: Defects whose size is how far they reach into the pipe (below its radius).
+INTO_PIPE = ('displaced_joint', 'intruding_branch')
 TEE_ENTRIES = ('run', 'branch')
 #: How a tee may be left, by how it is entered (the branch it came in by is not a way out).
 TEE_EXITS = {'run': ('run', 'branch'), 'branch': ('run',)}
@@ -67,6 +80,9 @@ OVERLAP_SAMPLE_M = 0.01
 #: (tee only, None otherwise).
 Piece = collections.namedtuple('Piece', 'kind spec diameter entry exit length stub')
 Frame = collections.namedtuple('Frame', 'origin axes')
+#: One defect: kind, straight segment index, piece index, metres from the
+#: segment's start, metres along the whole path, clock (1-12), size (m).
+Defect = collections.namedtuple('Defect', 'kind segment piece at along clock size')
 
 
 class WorldError(ValueError):
@@ -96,8 +112,9 @@ def turned(frame, turn):
 class Network(object):
     """Pieces and obstacles in travel order, laid out from the origin."""
 
-    def __init__(self, name, pieces, obstacles, start_m, source='<world>', points=None):
+    def __init__(self, name, pieces, obstacles, start_m, source='<world>', points=None, defects=()):
         self.name, self.pieces, self.obstacles = name, pieces, obstacles
+        self.defects = list(defects)
         self.start_m, self.source = start_m, source
         self.points = dict(points or {})    # name -> metres along the path
 
@@ -147,7 +164,7 @@ def build(data, source='<world>'):
     """Check ``data`` (the parsed YAML) and lay the network out."""
     if not isinstance(data, dict):
         raise WorldError('%s: a world is a mapping with pieces, got %r' % (source, type(data).__name__))
-    unknown = set(data) - {'name', 'diameter_mm', 'pieces', 'obstacles', 'start', 'points'}
+    unknown = set(data) - {'name', 'diameter_mm', 'pieces', 'obstacles', 'defects', 'start', 'points'}
     if unknown:
         raise WorldError('%s: unknown top-level key(s) %s' % (source, sorted(unknown)))
     default_mm = _diameter(data.get('diameter_mm', 90), source, 'diameter_mm')
@@ -163,7 +180,59 @@ def build(data, source='<world>'):
     if not 0.0 < start_m < total or pieces[_piece_at(pieces, start_m)].kind != 'straight':
         raise WorldError('%s: start: at_mm %.0f is not inside a straight piece' % (source, start_m * 1000))
     points = _points(data.get('points') or [], total, source)
-    return Network(data.get('name', source), pieces, obstacles, start_m, source, points)
+    defects = _defects(data.get('defects') or [], pieces, source)
+    return Network(data.get('name', source), pieces, obstacles, start_m, source, points, defects)
+
+
+def _defects(specs, pieces, source):
+    """The defects as :data:`Defect`, each checked against its segment."""
+    if not isinstance(specs, list):
+        raise WorldError('%s: defects: a list of {type, segment, at_mm, clock, size_mm} is needed' % source)
+    straights = [i for i, p in enumerate(pieces) if p.kind == 'straight']
+    return [_defect(i, spec, pieces, straights, source) for i, spec in enumerate(specs)]
+
+
+def _number(spec, key, source, where):
+    value = spec[key]
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise WorldError('%s: %s: %s %r is not a number' % (source, where, key, value))
+    return float(value)
+
+
+def _defect(index, spec, pieces, straights, source):
+    where = 'defects[%d]' % index
+    kind = _check_keys(spec, DEFECT_KEYS, source, where)
+    where = '%s (%s)' % (where, kind)
+    segment = spec['segment']
+    if isinstance(segment, bool) or not isinstance(segment, int) or not 0 <= segment < len(straights):
+        raise WorldError('%s: %s: segment %r is not a straight segment (0..%d, counted in travel order)'
+                         % (source, where, segment, len(straights) - 1))
+    piece_index = straights[segment]
+    piece = pieces[piece_index]
+    at_m = _number(spec, 'at_mm', source, where) / 1000.0
+    if not 0.0 <= at_m <= piece.length:
+        raise WorldError('%s: %s: at_mm %.0f is beyond segment %d (0..%.0f mm)'
+                         % (source, where, at_m * 1000, segment, piece.length * 1000))
+    clock = _number(spec, 'clock', source, where)
+    if not 1.0 <= clock <= 12.0:
+        raise WorldError('%s: %s: clock %g is not a clock position (1-12, 12 at the top, 3 on the right)'
+                         % (source, where, clock))
+    size_m = _number(spec, 'size_mm', source, where) / 1000.0
+    largest = piece.diameter / 2 if kind in INTO_PIPE else piece.length
+    if not 0.0 < size_m < largest:
+        raise WorldError('%s: %s: size_mm %.0f must be > 0 and below %.0f mm (%s)'
+                         % (source, where, size_m * 1000, largest * 1000,
+                            'the pipe radius' if kind in INTO_PIPE else 'the segment length'))
+    along = sum(p.length for p in pieces[:piece_index]) + at_m
+    return Defect(kind, segment, piece_index, at_m, along, clock, size_m)
+
+
+def clock_direction(axes, clock):
+    """Unit vector from the pipe's axis to ``clock`` (1-12) round the wall of
+    a pipe whose frame rows are ``axes``: 12 is up (z), 3 right (-y), looking
+    along x."""
+    angle = math.radians(30.0 * clock)
+    return tuple(math.cos(angle) * z - math.sin(angle) * y for y, z in zip(axes[1], axes[2]))
 
 
 def _points(specs, total_m, source):
