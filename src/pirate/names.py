@@ -23,6 +23,11 @@ PIRATE_ACTION = '/pirate'                     # pirate/PirateAction
 #: module, pirate.sim.twin.TRUTH_BODIES order): tests, bench and RViz only,
 #: never a PAB (the real robot has no such topic).
 GROUND_TRUTH_TOPIC = '/pirate/sim/ground_truth'
+#: The cameras (sensor_msgs/Image + CameraInfo, image_transport layout:
+#: <ns>/image_raw, <ns>/camera_info), twin or real robot alike, and the
+#: optical frames (z out of the lens, x right, y down) they are stamped in.
+CAMERA_NAMESPACES = {'front': '/pirate/front_camera', 'rear': '/pirate/rear_camera'}
+CAMERA_FRAMES = {'front': 'front_camera_optical', 'rear': 'rear_camera_optical'}
 MISSION_ACTION = '/pirate/mission'            # pirate/MissionAction (Supervisory layer)
 MISSION_COMMAND_SERVICE = '/pirate/mission/command'   # pirate/MissionCommand: pause, resume, ...
 MISSION_POSE_TOPIC = '/pirate/mission/pose'   # geometry_msgs/PoseStamped, estimate on the map

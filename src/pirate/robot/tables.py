@@ -103,7 +103,8 @@ JOINTS = (
     Joint('bend_iv', 27, ENCODER, True),
     Joint('rear_tilt', 28, ENCODER, False),
     # Camera pan has no angle in the Small State (Table B.1 gives board 20 a
-    # single angle, the tilt); it is published at its commanded position.
+    # single angle, the tilt); it is reconstructed from what board 20 is sent
+    # (pirate.state.camera_pan).
     Joint('camera_pan', None, ENCODER, False),
 )
 JOINT_NAMES = tuple(j.name for j in JOINTS)

@@ -19,18 +19,25 @@ the pipe network of the physics twin; empty: the straight pipe of
 ``~pipe_diameter``), ``~pipe_diameter`` (mm, 90 or 110), ``~orientation`` (rad,
 start roll, Fig 4.7), ``~joints`` (dict joint -> rad, start angles: the
 robot is moved across the pipe to where they fit, :mod:`pirate.sim.twin_start`),
-``~seed`` (sensor noise seed, -1 none), ``~rate`` (real-time factor).
+``~seed`` (sensor noise seed, -1 none), ``~rate`` (real-time factor),
+``~camera_rate`` (images per simulated second of each camera, 0: none;
+``~camera_width``, ``~camera_height`` in pixels; defaults: config/twin.yaml
+``cameras``). The front and rear cameras (:mod:`pirate.sim.twin_camera`)
+are rendered only while someone subscribes, stamped on the simulated clock.
 The robot is always the physics twin (:mod:`pirate.sim.robot_end`); a bad
 world, diameter or start pose ends the node with its reason (exit 1).
 """
+import os
 import threading
 import time
 
 import rospy
 from geometry_msgs.msg import Pose, PoseArray
 from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import CameraInfo, Image
 
 from pirate import names
+from pirate.camera.images import CameraStreams
 from pirate.robot import tables
 from pirate.msg import ControlArray, LimitArray, SetpointArray, SmallState
 from pirate.sim import robot_end
@@ -61,9 +68,40 @@ class SimRobotNode(object):
         self._clock_pub = rospy.Publisher('/clock', Clock, queue_size=1) if self.sim_time else None
         self._truth_pub = (rospy.Publisher(names.GROUND_TRUTH_TOPIC, PoseArray, queue_size=2)
                            if hasattr(self.model, 'ground_truth_poses') else None)
+        self.cameras = self._camera_streams()
         rospy.Subscriber(names.SETPOINT_TOPIC, SetpointArray, self._store, 0, queue_size=10)
         rospy.Subscriber(names.CONTROL_TOPIC, ControlArray, self._store, 1, queue_size=10)
         rospy.Subscriber(names.LIMITS_TOPIC, LimitArray, self._store, 2, queue_size=10)
+
+    def _camera_streams(self):
+        """The twin's cameras as topics, or None (``~camera_rate`` 0)."""
+        cfg = self.model.config['cameras']
+        rate_hz = float(rospy.get_param('~camera_rate', cfg['rate_hz']))
+        self._camera_size = (int(rospy.get_param('~camera_width', cfg['width_px'])),
+                             int(rospy.get_param('~camera_height', cfg['height_px'])))
+        if rate_hz <= 0:
+            return None
+        pubs = {camera: (rospy.Publisher(ns + '/image_raw', Image, queue_size=2),
+                         rospy.Publisher(ns + '/camera_info', CameraInfo, queue_size=2))
+                for camera, ns in names.CAMERA_NAMESPACES.items()}
+        self._renderer = None
+        return CameraStreams(pubs, self._render, 1.0 / rate_hz, cfg['fovy_deg'])
+
+    def _render(self, camera):
+        """One camera's image; the renderer is made in the stepping thread, on first use."""
+        if self._renderer is None:
+            from pirate.sim.twin_camera import TwinCameras
+            self._renderer = TwinCameras(self.model, *self._camera_size)
+        return self._renderer.render(camera)
+
+    def _publish_images(self, sim_t):
+        stamp = rospy.Time.from_sec(sim_t) if self.sim_time else rospy.Time.now()
+        try:
+            self.cameras.tick(sim_t, stamp)
+        except Exception as failed:     # no GL on this machine: the robot runs on without cameras
+            rospy.logerr('sim_robot: cannot render the cameras (MUJOCO_GL=%s): %s; no images',
+                         os.environ.get('MUJOCO_GL'), failed)
+            self.cameras = None
 
     def _store(self, msg, which):
         with self._lock:
@@ -113,6 +151,8 @@ class SimRobotNode(object):
                 self._clock_pub.publish(Clock(clock=rospy.Time.from_sec(sim_t)))
             if step % steps_per_cycle == 0:
                 self._publish_states()
+            if self.cameras:
+                self._publish_images(sim_t)
             wall_next += PICO_PERIOD_S / self.rate
             delay = wall_next - time.monotonic()
             if delay > 0:

@@ -128,6 +128,10 @@ class TwinRobot(CommandLatch):
             mujoco.mj_step(self.model, self.data, nstep=self._substeps)   # the steps between two PICO samples
             self.time += PICO_PERIOD_S
 
+    def led_drive(self, name):
+        """The duty an LED element ('front_led', 'rear_led') is driven at; None while its board is stopped."""
+        return self._drive(name)
+
     # --- Small State (Table B.1), raw ----------------------------------------
     def _noise(self, sigma):
         return self._rng.gauss(0.0, sigma) if self._rng else 0.0

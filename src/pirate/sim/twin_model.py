@@ -21,6 +21,7 @@ CONFIG_FILE = os.path.join(paths.CONFIG_DIR, 'twin.yaml')
 GEAR_SERVO_NM_PER_RAD = 20.0     # stiff: the gear output does not give
 BEND_JOINTS = tables.BEND_JOINTS
 GEAR_JOINTS = ('front_tilt', 'camera_tilt', 'camera_pan')
+ROOM_LIGHT = 'room_light'
 
 
 def load_config(path=CONFIG_FILE):
@@ -89,7 +90,7 @@ def model_xml(world, config, roll):
     ET.SubElement(root, 'visual').append(ET.Element('global', offwidth='640', offheight='480'))
     _defaults(root, config)
     body = ET.SubElement(root, 'worldbody')
-    ET.SubElement(body, 'light', pos='0 0 2', dir='0 0 -1')
+    ET.SubElement(body, 'light', name=ROOM_LIGHT, pos='0 0 2', dir='0 0 -1')   # viewers only; cameras see by the LEDs
     walls = twin_pipes.WallBuilder(body, config['physics']['wall_segments'], config['physics']['wall_thickness_m'])
     walls.network(world)
     pos, axes = start_pose(world, config, roll)

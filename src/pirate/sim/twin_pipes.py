@@ -7,16 +7,28 @@ corner is really there; a T-joint's run has the branch's hole cut out and
 the open side is left open (entered through the run or the branch, left by
 either); an end cap is a plate. Obstacles: a step is a
 plate on the floor, a reduction a narrower ring, debris a loose box.
+Defects (a leak, crack, corrosion, deposit, water, a displaced joint, an
+intruding branch) are visual geoms on the wall's inside, in their own
+group: the cameras see them, no contact touches them.
 Pure (no MuJoCo import): it writes MJCF elements.
 """
 import math
 import xml.etree.ElementTree as ET
 
-from pirate.world.network import tee_leaves_by
+from pirate.world.network import clock_direction, tee_leaves_by
 
 PIPE_CLASS = 'pipe'
 PIPE_GROUP = 1          # MuJoCo geom group of walls and obstacles (rays, rendering)
+DEFECT_GROUP = 2        # MuJoCo geom group of defects: drawn, never in contact
 MIN_BOX_M = 0.001
+#: How each defect looks (rgba): a hole dark, corrosion rust, a deposit
+#: grey-brown, water blue, a joint's ring and a branch pipe grey.
+DEFECT_RGBA = {'leak': '0.02 0.02 0.02 1', 'crack': '0.05 0.03 0.02 1', 'corrosion': '0.6 0.25 0.05 1',
+               'deposit': '0.45 0.4 0.3 1', 'water': '0.2 0.45 0.9 0.8', 'displaced_joint': '0.5 0.5 0.5 1',
+               'intruding_branch': '0.85 0.85 0.8 1'}
+DEFECT_FILM_M = 0.0005      # a flat defect's thickness, just inside the wall
+BRANCH_RADIUS_M = 0.008     # an intruding branch's pipe
+JOINT_WIDTH_M = 0.01        # a displaced joint's visible ring along the pipe
 
 
 def _add(a, b, scale=1.0):
@@ -57,17 +69,17 @@ class WallBuilder(object):
             tangent = _add(tuple(-c * math.sin(phi) for c in y), z, math.cos(phi))
             yield radial, tangent
 
-    def tube(self, origin, axes, radius, spans):
+    def tube(self, origin, axes, radius, spans, box=None):
         """Wall of a pipe along axes[0] from ``origin``; ``spans(radial)``
         returns the (start, end) intervals (m along the axis) of the wall
-        at that radial direction."""
+        at that radial direction; ``box`` adds each box (default :meth:`box`)."""
         half_width = radius * math.tan(math.pi / self.segments) + self.thickness / 2
         for radial, tangent in self._ring(axes):
             for start, end in spans(radial):
                 if end - start < MIN_BOX_M:
                     continue
                 centre = _add(_add(origin, axes[0], (start + end) / 2), radial, radius + self.thickness / 2)
-                self.box(centre, axes[0], radial, ((end - start) / 2, self.thickness / 2, half_width))
+                (box or self.box)(centre, axes[0], radial, ((end - start) / 2, self.thickness / 2, half_width))
 
     def plate(self, centre, axes, radius):
         """A disc closing a pipe end (an end cap), as one square plate."""
@@ -80,6 +92,45 @@ class WallBuilder(object):
             getattr(self, '_' + piece.kind)(piece)
         for obstacle in world.obstacles:
             getattr(self, '_obstacle_' + obstacle['type'])(world, obstacle)
+        for defect in world.defects:
+            self.defect(world.pieces[defect.piece], defect)
+
+    def _visual(self, attrs, kind):
+        attrs.update(contype='0', conaffinity='0', group=str(DEFECT_GROUP), rgba=DEFECT_RGBA[kind],
+                     name='defect_%s%d' % (kind, self.count))
+        ET.SubElement(self.parent, 'geom', attrs)
+        self.count += 1
+
+    def defect(self, piece, defect):
+        """A defect's visual geoms on ``piece``'s wall (a straight segment)."""
+        axes, radius = piece.entry.axes, piece.diameter / 2
+        radial = clock_direction(axes, defect.clock)
+        centre = _add(piece.entry.origin, axes[0], defect.at)
+        tangent = tuple(a * b - c * d for a, b, c, d in (
+            (radial[1], axes[0][2], radial[2], axes[0][1]), (radial[2], axes[0][0], radial[0], axes[0][2]),
+            (radial[0], axes[0][1], radial[1], axes[0][0])))
+        size, kind = defect.size, defect.kind
+        if kind == 'displaced_joint':       # the next pipe's rim shifted away from the clock: a lip of ``size`` there
+            self.tube(_add(centre, radial, -size), axes, radius, lambda r: [(0.0, JOINT_WIDTH_M)],
+                      lambda c, x, y, half: self._visual(
+                          dict(type='box', pos=_fmt(c), xyaxes=_fmt(x + y), size=_fmt(half)), kind))
+            return
+        if kind == 'intruding_branch':      # a small pipe from the wall into the bore
+            self._visual(dict(type='cylinder', pos=_fmt(_add(centre, radial, radius - size / 2)),
+                              zaxis=_fmt(radial), size=_fmt((BRANCH_RADIUS_M, size / 2))), kind)
+            return
+        if kind == 'deposit':               # a mound on the wall
+            self._visual(dict(type='ellipsoid', pos=_fmt(_add(centre, radial, radius)), zaxis=_fmt(radial),
+                              size=_fmt((size / 2, size / 2, size / 4))), kind)
+            return
+        inside = _add(centre, radial, radius - DEFECT_FILM_M)
+        if kind in ('crack', 'water'):      # long along the pipe: a crack narrow, a pool wide
+            width = 0.0015 if kind == 'crack' else radius * 0.6
+            self._visual(dict(type='box', pos=_fmt(inside), xyaxes=_fmt(axes[0] + tangent),
+                              size=_fmt((size / 2, width / 2, DEFECT_FILM_M))), kind)
+            return
+        self._visual(dict(type='cylinder', pos=_fmt(inside), zaxis=_fmt(radial),     # a hole, a patch
+                          size=_fmt((size / 2, DEFECT_FILM_M))), kind)
 
     def _straight(self, piece):
         self.tube(piece.entry.origin, piece.entry.axes, piece.diameter / 2,

@@ -44,6 +44,13 @@ ROOT = 'rotational_rear'
 ROOT_JOINT = 'root'
 ROTATIONAL_FRONT = 'rotational_front'
 CAMERA_BODIES = (('camera_tilt', (0, -1, 0)), ('camera_pan', (0, 0, 1)))
+#: MuJoCo cameras and the LED lights beside them: the front camera on the
+#: pan/tilt, the rear camera fixed in the rear module's end, each looking
+#: out along the robot's axis (a MuJoCo camera looks along its -z, image up
+#: along its y: the robot's z).
+FRONT_CAMERA, REAR_CAMERA = 'front_camera', 'rear_camera'
+FRONT_LED, REAR_LED = 'front_led', 'rear_led'
+LOOKING = {1: '0 -1 0 0 0 1', -1: '0 1 0 0 0 1'}     # xyaxes looking forward (+1) / backward (-1)
 
 
 def _fmt(values):
@@ -117,6 +124,11 @@ class RobotBuilder(object):
                          self.geo['front_length_m'] if module == 'front_module' else length)
             if module == 'front_module':
                 self._cameras(body)
+                self._led(body, FRONT_LED, self.geo['front_length_m'], 1)
+            if module == 'rear_module':
+                ET.SubElement(body, 'camera', name=REAR_CAMERA, pos=_fmt((-length, 0, 0)), xyaxes=LOOKING[-1],
+                              fovy='%g' % self.cfg['cameras']['fovy_deg'])
+                self._led(body, REAR_LED, length, -1)
             parent, x = body, direction * length
 
     def _cameras(self, front):
@@ -129,6 +141,16 @@ class RobotBuilder(object):
             limit = self.cfg['camera']['range_rad']
             ET.SubElement(body, 'joint', name=name, type='hinge', axis=_fmt(axis), range=_fmt(limit), limited='true')
             parent = body
+        ET.SubElement(parent, 'camera', name=FRONT_CAMERA, pos='0 0 0', xyaxes=LOOKING[1],
+                      fovy='%g' % self.cfg['cameras']['fovy_deg'])
+
+    def _led(self, body, name, x, direction):
+        """The LEDs at a module's end, one spot light along the axis (off
+        until the board lights them: pirate.sim.twin_camera)."""
+        cams = self.cfg['cameras']
+        ET.SubElement(body, 'light', name=name, pos=_fmt((direction * x, 0, 0)), dir=_fmt((direction, 0, 0)),
+                      cutoff='%g' % cams['led_cutoff_deg'], exponent='2', attenuation=_fmt(cams['led_attenuation']),
+                      castshadow='false', diffuse='0 0 0', specular='0 0 0', ambient='0 0 0')
 
     def build(self, parent, pos, xyaxes):
         """The robot with its root (rotational rear half) at ``pos``."""

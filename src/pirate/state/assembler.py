@@ -25,6 +25,7 @@ import math
 import statistics
 
 from pirate.robot import tables, units
+from pirate.state.camera_pan import PanEstimate, drive_config
 from pirate.state.odometry import WheelOdometry
 
 #: Newest data older than this (s, monotonic) makes the state stale: three
@@ -59,8 +60,9 @@ class BadState(ValueError):
 class StateAssembler(object):
     """Accumulates Small States; answers snapshots in SI units."""
 
-    def __init__(self, stale_after=STALE_AFTER_S):
+    def __init__(self, stale_after=STALE_AFTER_S, pan=None):
         self.stale_after = stale_after
+        self.pan = pan or PanEstimate(*drive_config())     # the camera pan: no encoder
         self._raw = {}                  # board -> list of 9 ints
         self._arrival = {}              # board -> monotonic time
         self._odometry = WheelOdometry()
@@ -89,6 +91,11 @@ class StateAssembler(object):
         self._previous_board = board
         return complete
 
+    def command(self, setpoints, modes, now):
+        """The setpoint and control arrays sent to the robot at ``now`` (the
+        camera pan's angle is reconstructed from them, :mod:`camera_pan`)."""
+        self.pan.command(list(setpoints), list(modes), now)
+
     def age(self, now):
         """Seconds since the newest Small State (inf if none yet)."""
         return now - max(self._arrival.values()) if self._arrival else float('inf')
@@ -105,7 +112,7 @@ class StateAssembler(object):
         positions, efforts = [], []
         for joint in tables.JOINTS:
             raw = self._raw.get(joint.board)
-            positions.append(_joint_angle(joint, raw))
+            positions.append(self.pan.angle(now) if joint.board is None else _joint_angle(joint, raw))
             efforts.append(units.spring_to_mnm(raw[tables.SS_BEND_LOAD])
                            if raw is not None and joint.has_spring else 0.0)
         speeds = [self._raw[b][tables.SS_VELOCITY] for b in tables.DRIVE_BOARDS if b in self._raw]

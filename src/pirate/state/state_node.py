@@ -1,6 +1,7 @@
 """ROS edge of Pirate State (report 4.8, 5.11).
 
-Subscribes the per-board Small State, and at the end of every Mega refresh
+Subscribes the per-board Small State and the arrays sent to the robot (the
+camera pan has no encoder: its angle is rebuilt from them), and at the end of every Mega refresh
 cycle publishes pirate/RobotState (for event-driven guards),
 sensor_msgs/JointState (RViz) and sensor_msgs/Imu (orientation). Serves the
 joint-sensors and IMU blackboards. A 10 Hz check republishes the state
@@ -16,8 +17,8 @@ import rospy
 from sensor_msgs.msg import Imu, JointState
 
 from pirate import health, names
-from pirate.robot import tables
-from pirate.msg import RobotState, SmallState
+from pirate.robot import safety, tables
+from pirate.msg import ControlArray, RobotState, SetpointArray, SmallState
 from pirate.srv import ImuSensor, ImuSensorResponse, JointSensors, JointSensorsResponse
 from pirate.state.assembler import BadState, StateAssembler, stale_reason
 from pirate.state.clock_ros import silence_clock
@@ -48,6 +49,9 @@ class PirateStateNode(object):
         rospy.Service(names.JOINT_SENSORS_SERVICE, JointSensors, self._joint_sensors)
         rospy.Service(names.IMU_SENSOR_SERVICE, ImuSensor, self._imu_sensor)
         rospy.Subscriber(names.SMALL_STATE_TOPIC, SmallState, self._on_small_state, queue_size=50)
+        self._sent = [[0] * tables.SETPOINT_SIZE, [safety.MODE_CODES['pwm']] * tables.CONTROL_SIZE]
+        rospy.Subscriber(names.SETPOINT_TOPIC, SetpointArray, self._on_sent, 0, queue_size=10)
+        rospy.Subscriber(names.CONTROL_TOPIC, ControlArray, self._on_sent, 1, queue_size=10)
         rospy.Timer(rospy.Duration(0.1), self._check_stale)
         updater = diagnostic_updater.Updater()
         updater.setHardwareID('pirate')
@@ -79,6 +83,12 @@ class PirateStateNode(object):
                 rospy.logwarn('pirate_state: %s; state is stale', stale_reason(snap.silent, snap.age))
             self._was_stale = snap.stale
             self._publish(snap)
+
+    def _on_sent(self, msg, which):
+        """An array sent to the robot: the camera pan (no encoder) moves by it."""
+        with self._lock:
+            self._sent[which] = list(msg.data)
+            self.assembler.command(self._sent[0], self._sent[1], self._clock())
 
     def _check_stale(self, _event):
         snap = self._snapshot()
