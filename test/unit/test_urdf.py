@@ -8,6 +8,7 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
+from pirate import names
 from pirate.robot import tables
 from pirate.viz import pose, urdf_gen
 
@@ -106,3 +107,21 @@ def test_base_pose_follows_fig_4_7():
 def test_bad_pose_inputs_are_refused(orientation, diameter):
     with pytest.raises(ValueError):
         pose.base_in_pipe(orientation, diameter)
+
+
+@pytest.mark.parametrize('camera, parent', [('front', 'camera_link'), ('rear', 'rear_camera_link')])
+def test_camera_images_have_optical_frames_looking_out_of_the_lens(camera, parent):
+    root = ET.fromstring(_text())
+    frame = names.CAMERA_FRAMES[camera]
+    joint = next(j for j in root.iter('joint') if j.find('child').get('link') == frame)
+    assert joint.get('type') == 'fixed' and joint.find('parent').get('link') == parent
+    roll, pitch, yaw = (float(v) for v in joint.find('origin').get('rpy').split())
+    # the optical z (out of the lens) in the parent's frame: rpy (-pi/2, 0, -pi/2) turns it onto x
+    z = (math.cos(yaw) * math.sin(pitch) * math.cos(roll) + math.sin(yaw) * math.sin(roll),
+         math.sin(yaw) * math.sin(pitch) * math.cos(roll) - math.cos(yaw) * math.sin(roll),
+         math.cos(pitch) * math.cos(roll))
+    assert z == pytest.approx((1, 0, 0), abs=1e-4)      # the URDF keeps 6 digits
+    if camera == 'rear':      # the rear camera link looks back along the rear module
+        turn = next(j for j in root.iter('joint') if j.find('child').get('link') == parent)
+        assert turn.find('parent').get('link') == 'rear_module'
+        assert float(turn.find('origin').get('rpy').split()[2]) == pytest.approx(math.pi, abs=1e-4)

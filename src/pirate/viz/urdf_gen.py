@@ -42,6 +42,7 @@ import math
 import sys
 import xml.etree.ElementTree as ET
 
+from pirate import names
 from pirate.robot import safety
 
 MODULE_LENGTH = 0.09      # m, l in eq 2.1 (report 2.4.1.1)
@@ -101,6 +102,9 @@ JOINTS = (
 )
 
 CAMERA_SIZE = 0.02   # m, cube drawn for the camera head
+#: A camera's optical frame (REP 103: z out of the lens, x right, y down)
+#: turned from a link whose x looks out of the lens.
+OPTICAL_RPY = (-math.pi / 2, 0, -math.pi / 2)
 
 
 def _fmt(values):
@@ -139,11 +143,24 @@ def _module_link(robot, link):
         _fixed(robot, wheel + '_joint', link, wheel, centre)
 
 
-def _fixed(robot, name, parent, child, xyz):
+def _fixed(robot, name, parent, child, xyz, rpy=(0, 0, 0)):
     joint = ET.SubElement(robot, 'joint', name=name, type='fixed')
     ET.SubElement(joint, 'parent', link=parent)
     ET.SubElement(joint, 'child', link=child)
-    ET.SubElement(joint, 'origin', xyz=_fmt(xyz), rpy=_fmt((0, 0, 0)))
+    ET.SubElement(joint, 'origin', xyz=_fmt(xyz), rpy=_fmt(rpy))
+
+
+def _camera_frames(robot):
+    """The frames the camera images are stamped in: the front camera's on
+    the pan/tilt head, the rear camera's at the rear module's end looking back."""
+    for camera in ('front', 'rear'):
+        ET.SubElement(robot, 'link', name=names.CAMERA_FRAMES[camera])
+    _fixed(robot, 'front_camera_optical_joint', 'camera_link', names.CAMERA_FRAMES['front'],
+           (CAMERA_SIZE, 0, 0), OPTICAL_RPY)
+    ET.SubElement(robot, 'link', name='rear_camera_link')
+    _fixed(robot, 'rear_camera_joint', 'rear_module', 'rear_camera_link', (-MODULE_LENGTH, 0, 0), (0, 0, math.pi))
+    _fixed(robot, 'rear_camera_optical_joint', 'rear_camera_link', names.CAMERA_FRAMES['rear'], (0, 0, 0),
+           OPTICAL_RPY)
 
 
 def _joint_origin(name, parent):
@@ -169,6 +186,7 @@ def build():
             ('box', {'size': (CAMERA_SIZE,) * 3}), 'camera_blue')
     ET.SubElement(robot, 'link', name='imu_link')
     _fixed(robot, 'imu_joint', BASE_LINK, 'imu_link', (-MODULE_LENGTH / 4, 0, 0))
+    _camera_frames(robot)
     for name, parent, child, axis, lower, upper in JOINTS:
         joint = ET.SubElement(robot, 'joint', name=name, type='revolute')
         ET.SubElement(joint, 'parent', link=parent)
