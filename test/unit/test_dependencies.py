@@ -30,6 +30,7 @@ MODULES = {
     'PIL': 'python3-pil', 'hypothesis': 'python3-hypothesis', 'pytest': 'python3-pytest',
     'diagnostic_updater': 'python3-diagnostic-updater', 'dynamic_reconfigure': 'python3-dynamic-reconfigure',
     'distributed': 'python3-distributed',
+    'cv2': 'python3-opencv',
 }
 #: Third-party modules from PyPI (scripts/pip-requirements.txt, installed
 #: into .venv by scripts/ensure_deps) and their rosdep keys in package.xml.
