@@ -18,16 +18,17 @@ from pirate.robot import safety
 from pirate.sim import twin_model, twin_pipes, twin_robot
 
 CAMERAS = {'front': twin_robot.FRONT_CAMERA, 'rear': twin_robot.REAR_CAMERA}
-#: The LED element (pirate.robot.tables) that lights each camera's view.
+#: Each LED light of the model and the setpoint element (pirate.robot.tables) that drives it.
 LEDS = {twin_robot.FRONT_LED: 'front_led', twin_robot.REAR_LED: 'rear_led'}
 ROBOT_GROUP = 0                 # the robot's shells and wheels (twin_model defaults)
 LED_FULL_DIFFUSE = 1.0          # a light's diffuse colour at full duty
+LED_SPECULAR = 0.3              # a light's specular colour at full duty: a faint sheen on the wet-looking wall
 LED_SCATTERED = 0.25            # ambient share at full duty: LED light the pipe's walls throw back
 #: Software GL (Mesa's llvmpipe behind EGL on a machine without a GPU) spends
 #: most of a frame on multisampling and on each box face's 4 x 4 quads: one
-#: sample, one quad per face keeps both cameras at 10 Hz within the twin's
-#: real-time factor (measurements.md#twin-camera-cost). The lighting is
-#: per vertex, so a long wall is lit from its ends.
+#: sample and one quad per face cut a frame from 4-10 ms to 1.5-3 ms
+#: (measurements.md#twin-camera-cost). The lighting is per vertex, so a
+#: long wall is lit from its ends.
 OFFSCREEN_SAMPLES = 0
 QUADS_PER_FACE = 1
 #: Walls and defects further from the lens than this are left out of a frame:
@@ -35,7 +36,6 @@ QUADS_PER_FACE = 1
 VIEW_RANGE_M = 1.5
 HIDDEN_GROUP = 5                # a geom group no camera draws
 NEAR_CLIP_M = 0.002             # nearest wall a lens sees (a wall 23 mm below the lens is in view)
-
 
 
 def led_level(counts):
@@ -77,7 +77,7 @@ class TwinCameras(object):
             level = led_level(self.twin.led_drive(element))
             model.light_active[self._lights[light]] = 1     # with no light on, GL's own ambient would light the scene
             model.light_diffuse[self._lights[light]] = LED_FULL_DIFFUSE * level
-            model.light_specular[self._lights[light]] = 0.3 * level
+            model.light_specular[self._lights[light]] = LED_SPECULAR * level
             model.light_ambient[self._lights[light]] = LED_SCATTERED * level
         model.geom_rgba[self._walls, 3] = 1.0
         return saved
