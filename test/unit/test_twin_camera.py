@@ -2,14 +2,17 @@
 the pan/tilt commands, showing the world's defects; published as
 sensor_msgs/Image + CameraInfo in the camera's optical frame, stamped on
 the robot's clock, only while someone watches. Small images (64 x 48)."""
+import xml.etree.ElementTree as ET
+
 import numpy
 import pytest
+import yaml
 from rospy import Time
 
 from pirate import names
 from pirate.camera.images import CameraStreams
 from pirate.robot import safety, tables, units
-from pirate.sim import twin, twin_camera
+from pirate.sim import twin, twin_camera, twin_model
 from pirate.world import network
 
 WIDTH, HEIGHT = 64, 48
@@ -142,3 +145,32 @@ def test_images_come_at_the_rate_and_only_while_watched():
     published = [streams.tick(k * 0.02, Time.from_sec(k * 0.02)) for k in range(11)]     # 0.2 s of PICO samples
     assert rendered == ['rear', 'rear', 'rear']          # at 0, 0.1, 0.2 s; the front nobody watches
     assert [k for k, cams in enumerate(published) if cams] == [0, 5, 10]
+
+
+def _inspection_world(start_mm):
+    """inspection_network_90 with the robot's middle at ``start_mm``."""
+    with open(network.world_path('inspection_network_90')) as stream:
+        data = yaml.safe_load(stream)
+    data['start'] = {'at_mm': start_mm}
+    return network.build(data, source='inspection_network_90')
+
+
+def test_the_rear_camera_finds_the_deposit_past_the_last_bend_on_the_way_back():
+    world = _inspection_world(4320)          # on the way back from the target, rear camera leading
+    deposit, = [d for d in world.defects if d.kind == 'deposit']
+    robot = twin.TwinRobot(world, settle_s=0.05)
+    cameras = twin_camera.TwinCameras(robot, WIDTH, HEIGHT)
+    _lit(robot)
+    rear = cameras.render('rear')
+    cameras.close()
+    assert 0.1 < 4.32 - 0.3 - deposit.along < 0.2      # the deposit lies 100-200 mm behind the rear camera
+    red, blue = rear[..., 0].astype(int), rear[..., 2].astype(int)
+    assert numpy.count_nonzero(red > blue + 10) > 5, 'the rear camera does not see the deposit'
+
+
+@pytest.mark.parametrize('kind', sorted(network.DEFECT_KEYS))
+def test_every_defect_kind_is_drawn_and_touches_nothing(kind):
+    world = _world([{'type': kind, 'segment': 0, 'at_mm': 900, 'clock': 3, 'size_mm': 10}])
+    root = ET.fromstring(twin_model.model_xml(world, twin_model.load_config(), 1.5708))
+    geoms = [g for g in root.iter('geom') if g.get('name', '').startswith('defect_' + kind)]
+    assert geoms and all(g.get('contype') == g.get('conaffinity') == '0' for g in geoms)
