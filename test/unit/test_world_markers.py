@@ -53,3 +53,13 @@ def test_robot_shells_reach_from_their_joint_and_wheels_sit_on_it():
     assert world_markers._rotate((shapes[0][2][3],) + tuple(shapes[0][2][:3]), (0, 0, 1)) == pytest.approx((1, 0, 0))
     centre = shapes[2][1]                                       # 22.5 mm back along the pitched x
     assert centre == pytest.approx((1 - 0.0225 * math.cos(0.5), 0, 0.0225 * math.sin(0.5)))
+
+
+def test_each_defect_is_a_marker_on_the_wall_at_its_clock():
+    world = network.build({'pieces': [{'type': 'straight', 'length_mm': 1000}, {'type': 'cap'}],
+                           'defects': [{'type': 'leak', 'segment': 0, 'at_mm': 600, 'clock': 3, 'size_mm': 2},
+                                       {'type': 'deposit', 'segment': 0, 'at_mm': 300, 'clock': 12, 'size_mm': 30}]})
+    (kind, leak, _, leak_size), (_, deposit, _, deposit_size) = world_markers.defect_shapes(world)
+    assert kind == 'defect'
+    assert leak == pytest.approx((0.6, -0.045, 0.0)) and deposit == pytest.approx((0.3, 0.0, 0.045))
+    assert leak_size == (world_markers.DEFECT_MIN_M,) * 3 and deposit_size == pytest.approx((0.03,) * 3)

@@ -2,7 +2,7 @@
 
 The pipe network (pirate.world.network) as translucent cylinders: every
 straight, both legs of a mitre bend, a T-joint's run and branch, end caps
-as thin discs. The robot at its true pose from the physics (the ground
+as thin discs, each defect as a sphere on the wall. The robot at its true pose from the physics (the ground
 truth topic, one pose per module in pirate.sim.twin.TRUTH_BODIES order) as
 boxes of the twin's module size with their wheels. Plain tuples out; the
 node (pirate.viz.world_node) turns them into markers. No ROS import.
@@ -11,8 +11,9 @@ import math
 
 from pirate.world import network
 
-#: Shape = (kind 'cylinder'|'shell'|'wheel', centre xyz, quaternion xyzw, scale xyz).
+#: Shape = (kind 'cylinder'|'shell'|'wheel'|'defect', centre xyz, quaternion xyzw, scale xyz).
 CAP_THICKNESS_M = 0.004
+DEFECT_MIN_M = 0.015        # a defect's marker is never smaller than this (a 2 mm crack must show)
 
 
 def _add(a, b, scale=1.0):
@@ -51,6 +52,18 @@ def pipe_shapes(world):
                 shapes.append(_tube(corner, x_in, d / 2, d))
             if piece.stub is not None:
                 shapes.append(_tube(corner, piece.stub.axes[0], d, d))
+    return shapes
+
+
+def defect_shapes(world):
+    """A sphere on the wall at each defect of ``world``, as large as the defect."""
+    shapes = []
+    for defect in world.defects:
+        piece = world.pieces[defect.piece]
+        radial = network.clock_direction(piece.entry.axes, defect.clock)
+        centre = _add(_add(piece.entry.origin, piece.entry.axes[0], defect.at), radial, piece.diameter / 2)
+        size = max(defect.size, DEFECT_MIN_M)
+        shapes.append(('defect', centre, (0.0, 0.0, 0.0, 1.0), (size, size, size)))
     return shapes
 
 

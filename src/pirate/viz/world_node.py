@@ -1,8 +1,8 @@
 """The world_viz node: the physics twin's pipe network and true robot, for RViz.
 
 Publishes, in the fixed frame ``world``: ``~pipes`` (MarkerArray, latched)
-the network of ``~world`` drawn translucent, and ``~robot`` (MarkerArray)
-the modules and wheels at their true poses from the ground-truth topic
+the network of ``~world`` drawn translucent, its defects as red spheres,
+and ``~robot`` (MarkerArray) the modules and wheels at their true poses from the ground-truth topic
 (names.GROUND_TRUTH_TOPIC). Only for display: the real robot has no ground
 truth, and no PAB reads it.
 
@@ -25,7 +25,8 @@ MODULE_RGBA = (0.85, 0.45, 0.1, 1.0)        # the URDF's pirate orange
 WHEEL_RGBA = (0.1, 0.1, 0.1, 1.0)
 #: TRUTH_BODIES order (front to rear) -> world_markers.robot_shapes directions.
 DIRECTIONS = (1, 1, 1, 2, -2, -1, -1, -1)
-TYPES = {'cylinder': Marker.CYLINDER, 'wheel': Marker.CYLINDER, 'shell': Marker.CYLINDER}
+DEFECT_RGBA = (0.9, 0.1, 0.1, 0.9)
+TYPES = {'cylinder': Marker.CYLINDER, 'wheel': Marker.CYLINDER, 'shell': Marker.CYLINDER, 'defect': Marker.SPHERE}
 
 
 def to_markers(shapes, ns, colours):
@@ -49,8 +50,8 @@ class WorldViz(object):
         self.geometry = twin_model.load_config()['geometry']
         pipes = rospy.Publisher('~pipes', MarkerArray, queue_size=1, latch=True)
         self.robot_pub = rospy.Publisher('~robot', MarkerArray, queue_size=1)
-        pipes.publish(to_markers(world_markers.pipe_shapes(self.world), 'pipes',
-                                 {'cylinder': PIPE_RGBA}))
+        pipes.publish(to_markers(world_markers.pipe_shapes(self.world) + world_markers.defect_shapes(self.world),
+                                 'pipes', {'cylinder': PIPE_RGBA, 'defect': DEFECT_RGBA}))
         rospy.Subscriber(names.GROUND_TRUTH_TOPIC, PoseArray, self.on_truth, queue_size=1)
         self._static = tf2_ros.StaticTransformBroadcaster()
         self._static.sendTransform(_identity(FRAME, FRAME + '_origin'))   # so RViz knows the frame
