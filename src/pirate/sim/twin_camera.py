@@ -6,11 +6,14 @@ and MuJoCo's headlight are off, the LED lights (front: board 21, rear:
 board 28) shine as bright as the board's duty says, the walls are opaque
 and the robot's own shells are hidden (the lens looks out of the dome).
 
-Headless: MuJoCo takes its GL back end from ``MUJOCO_GL`` when first
-imported; :mod:`pirate.sim` sets EGL unless the user chose (OSMesa when
-there is no EGL library). A renderer's GL context belongs to the thread
-that made it: make and use a :class:`TwinCameras` in one thread.
+Headless: the GL context is EGL, or OSMesa where there is no EGL library,
+or what ``MUJOCO_GL`` names (egl, osmesa, glfw); made here, whatever
+``MUJOCO_GL`` was when MuJoCo was first imported. A GL context belongs to
+the thread that made it: make and use a :class:`TwinCameras` in one thread.
 """
+import ctypes.util
+import os
+
 import mujoco
 import numpy
 
@@ -38,6 +41,25 @@ HIDDEN_GROUP = 5                # a geom group no camera draws
 NEAR_CLIP_M = 0.002             # nearest wall a lens sees (a wall 23 mm below the lens is in view)
 
 
+def gl_backend():
+    """The GL back end the cameras use: ``MUJOCO_GL`` if set, else EGL if its library is there, else OSMesa."""
+    return os.environ.get('MUJOCO_GL') or ('egl' if ctypes.util.find_library('EGL') else 'osmesa')
+
+
+def gl_context(width, height):
+    """A current offscreen GL context of the back end :func:`gl_backend` names."""
+    backend = gl_backend()
+    if backend == 'egl':
+        from mujoco.egl import GLContext
+    elif backend == 'osmesa':
+        from mujoco.osmesa import GLContext
+    else:
+        from mujoco.glfw import GLContext
+    context = GLContext(width, height)
+    context.make_current()
+    return context
+
+
 def led_level(counts):
     """Brightness 0..1 of an LED driven at ``counts`` (PWM duty; None: board stopped)."""
     return 0.0 if counts is None else min(1.0, abs(float(counts)) / safety.DUTY_MAX)
@@ -51,7 +73,16 @@ class TwinCameras(object):
         self.width, self.height = width, height
         self.model.vis.quality.offsamples = OFFSCREEN_SAMPLES
         self.model.vis.quality.numquads = QUADS_PER_FACE
-        self._renderer = mujoco.Renderer(self.model, height, width)
+        self.model.vis.global_.offwidth = max(width, self.model.vis.global_.offwidth)
+        self.model.vis.global_.offheight = max(height, self.model.vis.global_.offheight)
+        self._context = gl_context(width, height)
+        self._mjr = mujoco.MjrContext(self.model, mujoco.mjtFontScale.mjFONTSCALE_100)
+        mujoco.mjr_setBuffer(mujoco.mjtFramebuffer.mjFB_OFFSCREEN, self._mjr)
+        self._scene = mujoco.MjvScene(self.model, maxgeom=self.model.ngeom + 100)
+        self._camera = mujoco.MjvCamera()
+        self._camera.type = mujoco.mjtCamera.mjCAMERA_FIXED
+        self._rect = mujoco.MjrRect(0, 0, width, height)
+        self._pixels = numpy.empty((height, width, 3), numpy.uint8)
         self._option = mujoco.MjvOption()
         self._option.geomgroup[ROBOT_GROUP] = 0
         self.model.vis.map.znear = NEAR_CLIP_M / self.model.stat.extent     # MuJoCo's is relative to the model
@@ -95,10 +126,17 @@ class TwinCameras(object):
             raise KeyError('no camera %r; the twin has %s' % (camera, ', '.join(sorted(CAMERAS))))
         saved = self._lit_by_leds(camera)
         try:
-            self._renderer.update_scene(self.twin.data, camera=CAMERAS[camera], scene_option=self._option)
-            return self._renderer.render().copy()
+            self._context.make_current()
+            self._camera.fixedcamid = self.model.camera(CAMERAS[camera]).id
+            mujoco.mjv_updateScene(self.model, self.twin.data, self._option, None, self._camera,
+                                   mujoco.mjtCatBit.mjCAT_ALL, self._scene)
+            mujoco.mjr_render(self._rect, self._scene, self._mjr)
+            mujoco.mjr_readPixels(self._pixels, None, self._rect, self._mjr)
+            return numpy.flipud(self._pixels).copy()       # GL's rows run bottom up
         finally:
             self._restore(saved)
 
     def close(self):
-        self._renderer.close()
+        """Free the GL resources (in the thread that made them)."""
+        self._mjr.free()
+        self._context.free()
