@@ -35,18 +35,21 @@ ALLOWED = {
     'supervisory': {'robot', 'state', 'sequencer', 'world'},
     'panel': {'robot', 'state', 'sequencer', 'supervisory'},
     'link': {'robot'},
-    'sim': {'robot', 'state', 'world'},
+    'camera': set(),      # images and camera info as ROS messages, the real cameras' node
+    'sim': {'robot', 'state', 'world', 'camera'},
     'viz': {'robot', 'state', 'sequencer', 'supervisory', 'world', 'sim'},   # sim: the twin's pipe geometry
     'manager': {'robot', 'state', 'sequencer', 'panel'},
-    'docs': {'robot', 'state', 'sequencer', 'supervisory', 'world', 'panel', 'link', 'sim', 'viz'},
+    'docs': {'robot', 'state', 'sequencer', 'supervisory', 'world', 'panel', 'link', 'sim', 'viz', 'camera'},
     'sweep': {'world'},   # the runner of the twin benches; a bench's cases load it
     'testing': {'robot', 'state', 'sequencer', 'supervisory', 'world', 'panel', 'link', 'sim', 'viz',
-                'manager'},
+                'manager', 'camera'},
 }
 
 #: The modules that import ROS. Each is named *_node.py or *_ros.py, except
 #: :data:`ROS_BY_OTHER_NAME`.
 ROS_MODULES = (
+    'pirate.camera.images_ros',
+    'pirate.camera.v4l2_node',
     'pirate.link.host',
     'pirate.link.service_bridge',
     'pirate.manager.manager_node',

@@ -10,7 +10,7 @@ import yaml
 from rospy import Time
 
 from pirate import names
-from pirate.camera.images import CameraStreams
+from pirate.camera.images_ros import CameraStreams
 from pirate.robot import safety, tables, units
 from pirate.sim import twin, twin_camera, twin_model
 from pirate.world import network

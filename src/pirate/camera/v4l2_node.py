@@ -14,7 +14,7 @@ import rospy
 from sensor_msgs.msg import CameraInfo, Image
 
 from pirate import names
-from pirate.camera import images
+from pirate.camera import images_ros as images
 
 
 def open_device(device, width, height):

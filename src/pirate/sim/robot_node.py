@@ -37,7 +37,7 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import CameraInfo, Image
 
 from pirate import names
-from pirate.camera.images import CameraStreams
+from pirate.camera.images_ros import CameraStreams
 from pirate.robot import tables
 from pirate.msg import ControlArray, LimitArray, SetpointArray, SmallState
 from pirate.sim import robot_end
