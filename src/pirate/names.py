@@ -28,6 +28,10 @@ GROUND_TRUTH_TOPIC = '/pirate/sim/ground_truth'
 #: optical frames (z out of the lens, x right, y down) they are stamped in.
 CAMERA_NAMESPACES = {'front': '/pirate/front_camera', 'rear': '/pirate/rear_camera'}
 CAMERA_FRAMES = {'front': 'front_camera_optical', 'rear': 'rear_camera_optical'}
+#: The manager took in the robot state stamped so (std_msgs/Time), published
+#: in simulated time only: the simulator steps on when it hears it
+#: (pirate.sim.lockstep, doc/clock.md).
+LOCKSTEP_TOPIC = '/pirate/sim/lockstep'
 MISSION_ACTION = '/pirate/mission'            # pirate/MissionAction (Supervisory layer)
 MISSION_COMMAND_SERVICE = '/pirate/mission/command'   # pirate/MissionCommand: pause, resume, ...
 MISSION_POSE_TOPIC = '/pirate/mission/pose'   # geometry_msgs/PoseStamped, estimate on the map

@@ -25,6 +25,7 @@ import diagnostic_updater
 import dynamic_reconfigure.server
 import rospy
 from actionlib_msgs.msg import GoalStatus
+from std_msgs.msg import Time
 
 from pirate import health, names
 from pirate.robot import commands, link_watch
@@ -146,6 +147,8 @@ class PirateManager(object):
         self._action = actionlib.ActionServer(names.PIRATE_ACTION, PirateAction, self._on_goal,
                                               self._on_cancel, auto_start=False)
         rospy.Service(names.SERVER_STATUS_SERVICE, ServerStatus, self._status)
+        self._lockstep = (rospy.Publisher(names.LOCKSTEP_TOPIC, Time, queue_size=5)
+                          if rospy.get_param('/use_sim_time', False) else None)
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state, queue_size=5)
         watch = link_watch.LinkWatch()   # the link back: control and limits before any setpoint
         rospy.Subscriber(names.SMALL_STATE_TOPIC, SmallState, lambda _msg: watch.heard(time.monotonic())
@@ -212,6 +215,11 @@ class PirateManager(object):
 
     # --- robot side -------------------------------------------------------
     def _on_state(self, msg):
+        self._take_state(msg)
+        if self._lockstep is not None:      # taken in: the simulator may step on (doc/clock.md)
+            self._lockstep.publish(Time(data=msg.header.stamp))
+
+    def _take_state(self, msg):
         blocker = pab_blocker(msg.stale, tuple(bytearray(msg.silent_boards)), float('inf'))
         if blocker:     # old angles are no feedback: the running primitive ends now
             self.feed.lose(blocker)

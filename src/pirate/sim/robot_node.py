@@ -5,14 +5,16 @@ three command arrays as the Mega does and publishes one raw Small State per
 board every Mega refresh cycle (10 Hz, SPEC 2), while the model steps at the
 PICO loop rate (50 Hz).
 
-Time: with ``use_sim_time`` the node owns ``/clock`` and advances it by
-``~rate`` simulated seconds per wall second (``~rate`` 1 = real time);
-without it, it runs in wall time and ``~rate`` must be 1.
+Time (doc/clock.md): with ``use_sim_time`` (every launch of the simulated
+robot) the node owns ``/clock`` and advances it by at most ``~rate``
+simulated seconds per wall second, in lockstep with the stack: after each
+Mega cycle's states it waits until the manager acknowledges a state
+(:mod:`pirate.sim.lockstep`, at most ``~lockstep_bound`` wall s). Without
+``use_sim_time`` it runs in wall time, ``~rate`` 1, no lockstep.
 
 The Mega's watchdog (:mod:`pirate.sim.watchdog`) stops every board when no
-setpoint array arrives for 0.25 s (wall clock), as the firmware does; the
-time this node itself stood still (descheduled on a loaded laptop) does not
-count (:class:`pirate.state.robot_clock.RobotClock`, ticked by each step).
+setpoint array arrives for 0.25 s of the simulated robot's time, as the
+firmware does on its own clock.
 
 Private params: ``~world`` (a world file or a name under config/worlds/:
 the pipe network of the physics twin; empty: the straight pipe of
@@ -24,6 +26,7 @@ robot is moved across the pipe to where they fit, :mod:`pirate.sim.twin_start`),
 ``~camera_width``, ``~camera_height`` in pixels; defaults: config/twin.yaml
 ``cameras``). The front and rear cameras (:mod:`pirate.sim.twin_camera`)
 are rendered only while someone subscribes, stamped on the simulated clock.
+``~lockstep_bound`` (wall s the simulator waits for the stack per cycle).
 The robot is always the physics twin (:mod:`pirate.sim.robot_end`); a bad
 world, diameter or start pose ends the node with its reason (exit 1).
 """
@@ -35,14 +38,15 @@ import rospy
 from geometry_msgs.msg import Pose, PoseArray
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import CameraInfo, Image
+from std_msgs.msg import Time
 
 from pirate import names
 from pirate.camera.images_ros import CameraStreams
 from pirate.robot import tables
 from pirate.msg import ControlArray, LimitArray, SetpointArray, SmallState
 from pirate.sim import robot_end
+from pirate.sim.lockstep import WAIT_BOUND_S, Lockstep
 from pirate.sim.watchdog import MegaWatchdog
-from pirate.state.robot_clock import RobotClock
 
 PICO_PERIOD_S = 0.02    # PICO control loops, 50 Hz
 MEGA_PERIOD_S = 0.1     # Mega refresh of all nine boards, about 10 Hz
@@ -63,7 +67,10 @@ class SimRobotNode(object):
         self._arrays = [list(self.model.setpoints), list(self.model.modes), list(self.model.limits)]
         self._logged = set()
         self.watchdog = MegaWatchdog()
-        self._clock = RobotClock()
+        self._sim_s = CLOCK_START_S     # the simulated robot's time: the Mega watchdog's clock
+        self.lockstep = Lockstep(float(rospy.get_param('~lockstep_bound', WAIT_BOUND_S)))
+        self._ack_sub = (rospy.Subscriber(names.LOCKSTEP_TOPIC, Time, lambda _msg: self.lockstep.acknowledged())
+                         if self.sim_time else None)
         self._state_pub = rospy.Publisher(names.SMALL_STATE_TOPIC, SmallState, queue_size=len(tables.BOARDS) * 4)
         self._clock_pub = rospy.Publisher('/clock', Clock, queue_size=1) if self.sim_time else None
         self._truth_pub = (rospy.Publisher(names.GROUND_TRUTH_TOPIC, PoseArray, queue_size=2)
@@ -107,7 +114,7 @@ class SimRobotNode(object):
         with self._lock:
             self._arrays[which] = list(msg.data)
             if which == 0:
-                self.watchdog.setpoint_arrived(self._clock())
+                self.watchdog.setpoint_arrived(self._sim_s)
             reasons = self._command()
         self._log_once(reasons)
 
@@ -123,15 +130,32 @@ class SimRobotNode(object):
                 rospy.logwarn('sim_robot: %s', reason)
 
     def _publish_states(self):
+        if self._ack_sub is not None:
+            self.lockstep.published()   # before the first state: its acknowledgement may be quick
         for board in tables.BOARDS:
             self._state_pub.publish(SmallState(board=board, data=self.model.small_state(board)))
         if self._truth_pub:
             self._truth_pub.publish(_pose_array(self.model.ground_truth_poses()))
 
+    def _consumed(self):
+        """Wait (bounded) until the stack took in the cycle just published;
+        return the wall s waited."""
+        if self._ack_sub is None:
+            return 0.0
+        start = time.monotonic()
+        if not self.lockstep.wait(self._consumers):
+            rospy.logwarn_throttle(10.0, 'sim_robot: the stack did not take a state in within %.1f s: '
+                                   'stepping on (%d times)', self.lockstep.bound_s, self.lockstep.overruns)
+        return time.monotonic() - start
+
+    def _consumers(self):
+        """Someone takes the states in and acknowledges them (a dead node drops its connection)."""
+        return self._ack_sub.get_num_connections() > 0 and self._state_pub.get_num_connections() > 0
+
     def spin(self):
-        """Step the model; publish states every Mega cycle and /clock."""
+        """Step the model; publish /clock every step, the states every Mega
+        cycle, then wait for the stack to take them in."""
         steps_per_cycle = int(round(MEGA_PERIOD_S / PICO_PERIOD_S))
-        sim_t = CLOCK_START_S
         wall_next = time.monotonic()
         rospy.loginfo('sim_robot: %d mm pipe, roll %.2f rad, rate x%.1f%s',
                       round(self.model.pipe_diameter_m * 1000), self.model.rear_roll, self.rate,
@@ -139,20 +163,20 @@ class SimRobotNode(object):
         step = 0
         while not rospy.is_shutdown():
             with self._lock:
-                if self.watchdog.poll(self._clock()):
+                if self.watchdog.poll(self._sim_s):
                     self._command()
                     rospy.logwarn('sim_robot: no setpoint array for %.2f s: every board stopped '
                                   '(Mega watchdog)', self.watchdog.timeout_s)
                 self.model.step(PICO_PERIOD_S)
-            sim_t += PICO_PERIOD_S
-            self._clock.tick()
+                self._sim_s += PICO_PERIOD_S
             step += 1
             if self._clock_pub:
-                self._clock_pub.publish(Clock(clock=rospy.Time.from_sec(sim_t)))
+                self._clock_pub.publish(Clock(clock=rospy.Time.from_sec(self._sim_s)))
             if step % steps_per_cycle == 0:
                 self._publish_states()
+                wall_next += self._consumed()   # simulated time stood still: not made up for
             if self.cameras:
-                self._publish_images(sim_t)
+                self._publish_images(self._sim_s)
             wall_next += PICO_PERIOD_S / self.rate
             delay = wall_next - time.monotonic()
             if delay > 0:

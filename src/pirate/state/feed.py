@@ -7,8 +7,8 @@ state, on cancel, and a few times a second to check two clocks:
 - the primitive's timeout runs on *robot* time, the stamps of the states
   themselves, so a simulated robot running faster than real time keeps the
   report's 15 s;
-- the feedback watchdog runs on the *monotonic wall clock*: when states stop
-  arriving (a stopped simulated clock included) the wait ends with
+- the feedback watchdog runs on ``robot_clock`` (below): when states stop
+  arriving the wait ends with
   :class:`FeedbackLost` within ``feedback_timeout`` plus one poll; a state
   reported stale (a silent board, :meth:`RobotFeed.lose`) ends it at once;
 - every wait also has a wall-clock bound (``wall_factor`` x its timeout),
@@ -16,8 +16,9 @@ state, on cancel, and a few times a second to check two clocks:
   crawls.
 
 The watchdog's silence is measured on ``robot_clock`` (default: the wall
-clock): for a simulated robot, :class:`pirate.state.robot_clock.RobotClock`,
-so a simulator running late is not taken for a silent robot.
+clock): for a simulated robot, simulated time, which the simulator advances
+in lockstep with the stack (doc/clock.md), so a late stack or simulator is
+not taken for a silent robot.
 
 Pure Python: no ROS; the manager pushes states in.
 """

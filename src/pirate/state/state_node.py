@@ -7,7 +7,7 @@ sensor_msgs/JointState (RViz) and sensor_msgs/Imu (orientation). Serves the
 joint-sensors and IMU blackboards. A 10 Hz check republishes the state
 marked ``stale`` when the robot stops reporting, so nobody mistakes old
 angles for fresh ones; silence is timed on the wall clock, or for a
-simulated robot on :mod:`pirate.state.robot_clock` (late is not silent).
+simulated robot on simulated time, in lockstep with the stack (doc/clock.md).
 """
 import math
 import threading
