@@ -80,7 +80,6 @@ BAD_ARGS = [   # entry, argument, words of the error
     ('robot.launch', 'orientation:=up', 'a number of rad'),
     ('demo.launch', 'joints:=front_tilt 0.4', 'a YAML dict of joint: rad is needed'),
     ('Manager.launch', 'panel:=keyboard', 'use virtual, midi or none'),
-    ('sim.launch', 'rate:=5', 'needs use_sim_time:=true'),
 ]
 
 
@@ -94,15 +93,32 @@ def test_bad_argument_values_stop_roslaunch_with_the_reason(entry, arg, words):
 
 @pytest.mark.parametrize('args,present,absent', [
     (['headless:=true'], ['/pirate_manager', '/sim_robot'], ['/virtual_panel', '/rviz']),
-    (['use_sim_time:=true', 'rate:=5', 'gui:=false'], ['/virtual_panel'], ['/rviz']),
+    (['rate:=5', 'gui:=false'], ['/virtual_panel'], ['/rviz']),
 ])
-def test_sim_launch_headless_and_sim_time(args, present, absent):
+def test_sim_launch_headless_and_fast(args, present, absent):
     nodes = _launch('sim.launch', *args)
     assert nodes.returncode == 0, nodes.stderr
     for node in present:
         assert node in nodes.stdout
     for node in absent:
         assert node not in nodes.stdout
+
+
+@pytest.mark.parametrize('entry,args,sim_time', [
+    ('sim.launch', [], True),
+    ('demo.launch', [], True),
+    ('Manager.launch', ['robot:=sim'], True),
+    ('robot.launch', ['robot:=sim'], True),
+    ('Manager.launch', ['robot:=real'], False),
+    ('Manager.launch', ['robot:=fil'], False),
+])
+def test_the_simulated_robot_always_runs_on_simulated_time(entry, args, sim_time):
+    """Every launch of the simulated robot sets /use_sim_time (its watchdogs
+    judge silence on the lockstep clock, doc/clock.md); a real robot's stack keeps the wall clock."""
+    dump = subprocess.run(['roslaunch', '--dump-params', os.path.join(LAUNCH_DIR, entry)] + args,
+                          capture_output=True, text=True, timeout=60)
+    assert dump.returncode == 0, dump.stderr
+    assert ('/use_sim_time: true' in dump.stdout) == sim_time, dump.stdout
 
 
 def test_the_pipe_diameter_reaches_the_manager_and_the_robot():
