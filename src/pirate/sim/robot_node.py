@@ -138,15 +138,10 @@ class SimRobotNode(object):
             self._truth_pub.publish(_pose_array(self.model.ground_truth_poses()))
 
     def _consumed(self):
-        """Wait (bounded) until the stack took in the cycle just published;
-        return the wall s waited."""
-        if self._ack_sub is None:
-            return 0.0
-        start = time.monotonic()
-        if not self.lockstep.wait(self._consumers):
+        """Wait (bounded) until the stack took in the cycle just published."""
+        if self._ack_sub is not None and not self.lockstep.wait(self._consumers):
             rospy.logwarn_throttle(10.0, 'sim_robot: the stack did not take a state in within %.1f s: '
                                    'stepping on (%d times)', self.lockstep.bound_s, self.lockstep.overruns)
-        return time.monotonic() - start
 
     def _consumers(self):
         """Someone takes the states in and acknowledges them (a dead node drops its connection)."""
@@ -174,7 +169,7 @@ class SimRobotNode(object):
                 self._clock_pub.publish(Clock(clock=rospy.Time.from_sec(self._sim_s)))
             if step % steps_per_cycle == 0:
                 self._publish_states()
-                wall_next += self._consumed()   # simulated time stood still: not made up for
+                self._consumed()
             if self.cameras:
                 self._publish_images(self._sim_s)
             wall_next += PICO_PERIOD_S / self.rate
@@ -182,7 +177,7 @@ class SimRobotNode(object):
             if delay > 0:
                 time.sleep(delay)       # this node is the clock: it paces on the wall
             elif delay < -0.5:
-                wall_next = time.monotonic()   # fell behind; do not try to catch up
+                wall_next = time.monotonic()   # fell behind (a slow stack); do not try to catch up
 
 
 def _pose_array(poses):
