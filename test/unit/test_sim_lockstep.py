@@ -31,18 +31,25 @@ def test_an_acknowledged_cycle_lets_the_simulator_step_on():
     assert step.wait(lambda: True) and step.overruns == 0
 
 
-def test_a_held_consumer_holds_the_simulator_until_the_bound():
-    """Nothing acknowledges: the wall clock never moves, so the wait would
-    last for ever; with it moving, the simulator steps on at the bound."""
-    wall = FakeWall(0.25)
+def _running(wall):
+    """A lockstep whose consumer has acknowledged a first cycle."""
     step = Lockstep(bound_s=1.0, wall=wall)
+    step.acknowledged()
+    return step
+
+
+def test_a_held_consumer_holds_the_simulator_until_the_bound():
+    """Nothing acknowledges: the simulator steps on at the bound (the wall
+    clock moves 0.25 s at each look)."""
+    wall = FakeWall(0.25)
+    step = _running(wall)
     step.published()
     assert not step.wait(lambda: True)
     assert step.overruns == 1 and wall.now >= 1.0
 
 
 def test_an_acknowledgement_of_an_earlier_cycle_does_not_count():
-    step = Lockstep(bound_s=1.0, wall=FakeWall(0.25))
+    step = _running(FakeWall(0.25))
     step.acknowledged()         # late: the cycle before
     step.published()
     assert not step.wait(lambda: True)
@@ -56,19 +63,27 @@ def test_nobody_consuming_holds_nothing():
 
 def test_a_consumer_that_drops_out_releases_the_wait():
     alive = [True, True, False]     # its connection closes while the simulator waits
-    step = Lockstep(bound_s=1.0, wall=FakeWall(0.0))
+    step = _running(FakeWall(0.0))
     step.published()
     assert step.wait(lambda: alive.pop(0)) and step.overruns == 0
 
 
 def test_the_acknowledgement_wakes_a_waiting_simulator():
     """The wall clock stands still: only the consumer's acknowledgement can end the wait."""
-    step = Lockstep(bound_s=1.0, wall=FakeWall(0.0))
+    step = _running(FakeWall(0.0))
     step.published()
     consumer = threading.Thread(target=step.acknowledged)
     consumer.start()
     assert step.wait(lambda: True)
     consumer.join()
+
+
+def test_before_the_first_acknowledgement_nobody_waits():
+    """A stack starting up: the manager's acknowledgement publisher is
+    connected before its state subscription is."""
+    step = Lockstep(bound_s=1.0, wall=FakeWall(0.25))
+    step.published()
+    assert step.wait(lambda: True) and step.overruns == 0
 
 
 def test_the_bound_must_be_positive():

@@ -31,6 +31,7 @@ class Lockstep(object):
             raise ValueError('lockstep bound %r s: must be above 0' % (bound_s,))
         self.bound_s = bound_s
         self.overruns = 0           # cycles the simulator stepped on unacknowledged
+        self.heard = False          # a consumer acknowledged a cycle (one is there and subscribed)
         self._wall = wall
         self._cond = threading.Condition()
         self._acknowledged = True
@@ -43,16 +44,18 @@ class Lockstep(object):
     def acknowledged(self):
         """A consumer took in the state of the newest cycle."""
         with self._cond:
-            self._acknowledged = True
+            self._acknowledged = self.heard = True
             self._cond.notify_all()
 
     def wait(self, consumers):
         """Block until the newest cycle is acknowledged, ``consumers()`` is
         false (nobody consumes: nothing to wait for) or ``bound_s`` of wall
-        time passed. True when acknowledged or nobody consumes."""
+        time passed. True when acknowledged or nobody consumes. Before the
+        first acknowledgement nobody waits: a consumer starting up is not
+        yet subscribed all along the chain."""
         end = self._wall() + self.bound_s
         with self._cond:
-            while not self._acknowledged and consumers():
+            while not self._acknowledged and self.heard and consumers():
                 left = end - self._wall()
                 if left <= 0:
                     self.overruns += 1
