@@ -41,6 +41,7 @@ ALLOWED = {
     'manager': {'robot', 'state', 'sequencer', 'panel'},
     'docs': {'robot', 'state', 'sequencer', 'supervisory', 'world', 'panel', 'link', 'sim', 'viz', 'camera'},
     'sweep': {'world'},   # the runner of the twin benches; a bench's cases load it
+    'inspection': {'robot', 'state', 'world', 'supervisory'},   # findings placed on the map, the report
     'testing': {'robot', 'state', 'sequencer', 'supervisory', 'world', 'panel', 'link', 'sim', 'viz',
                 'manager', 'camera'},
 }
