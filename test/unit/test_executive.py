@@ -434,3 +434,13 @@ def test_between_missions_only_the_next_missions_level_can_be_set(text, ok, leve
     answer = ex.between_missions(text, ex.FULL)
     assert answer[0] is ok and answer[2] == level
     assert ok or answer[1] == 'no mission is running'
+
+
+def test_the_localisers_uncertainty_is_its_tolerance_plus_the_drift_since_the_anchor():
+    localiser = Localiser(0.4, SETTINGS)
+    tolerance_m = SETTINGS['locate_tolerance_mm'] / 1000.0
+    assert localiser.uncertainty_m(7000.0) == pytest.approx(tolerance_m)       # before any reading
+    localiser.update(7000.0)
+    assert localiser.uncertainty_m(5000.0) == pytest.approx(tolerance_m + SETTINGS['odometry_drift'] * 2.0)
+    localiser.turn_taken(1.7, 9000.0)
+    assert localiser.uncertainty_m(9000.0) == pytest.approx(tolerance_m)

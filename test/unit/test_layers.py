@@ -53,6 +53,7 @@ ROS_MODULES = (
     'pirate.camera.v4l2_node',
     'pirate.link.host',
     'pirate.link.service_bridge',
+    'pirate.inspection.inspection_node',
     'pirate.manager.manager_node',
     'pirate.panel.mapper_ros',
     'pirate.panel.midi_node',

@@ -291,7 +291,7 @@ def test_set_plus_record_sends_no_limits_all_once_per_press(rig):
 @pytest.mark.parametrize('channel,value,reason', [
     (99, 64, 'not on the panel map'), (SLIDER_BEND_I, 300, 'outside 0-127'),
     (SLIDER_BEND_I, -1, 'outside 0-127'), (SLIDER_BEND_I, 1.5, 'integers'),
-    (32, 127, 'not used')])
+    (0, 127, 'not used')])
 def test_bad_input_logged_once_and_ignored(rig, channel, value, reason):
     rig.play()
     before = rig.setpoint.get_all()
@@ -382,3 +382,33 @@ def test_stop_cancels_another_clients_goal_in_manual_mode(rig):
     rig.pab.active = True                     # a goal from a terminal runs
     rig.press(STOP)
     assert rig.pab.cancels == 1
+
+
+MARK_FINDING = 32      # S 1
+
+
+class FakeFinding(object):
+    def __init__(self):
+        self.notes = []
+
+    def mark(self, note):
+        self.notes.append(note)
+
+
+@pytest.mark.parametrize('pab_mode', [False, True])
+def test_the_mark_button_marks_one_finding_per_press_in_either_mode(rig, pab_mode):
+    finding = FakeFinding()
+    rig.mapper = Mapper(panel_config.load(CONFIG), rig.setpoint, rig.control, rig.limit, rig.pab,
+                        rig.leds.__setitem__, rig.logs.append, rig.clock, finding=finding)
+    if pab_mode:
+        rig.press(REWIND)
+    rig.mapper.handle(MARK_FINDING, PRESS)
+    rig.mapper.handle(MARK_FINDING, PRESS)          # held: one press
+    rig.mapper.handle(MARK_FINDING, RELEASE)
+    rig.press(MARK_FINDING)
+    assert finding.notes == ['marked from the panel (S 1)'] * 2
+
+
+def test_the_mark_button_without_a_recorder_tells_the_operator(rig):
+    rig.press(MARK_FINDING)
+    assert rig.logs[-1] == 'S 1: no inspection recorder to mark a finding with'

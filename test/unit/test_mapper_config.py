@@ -25,7 +25,7 @@ SPEC5 = {
     19: ('limit', 'bend_ii', (M,)), 20: ('limit', 'bend_i', (M,)),
     21: ('setpoint', 'camera_pan', (M, P)), 22: ('setpoint', 'front_led', (M, P)),
     23: ('setpoint', 'rotation', (M,)),
-    32: ('none', None, ()),
+    32: ('mark_finding', None, (M, P)),     # unused in Table E.1 (no rear module control): marks a finding
     33: ('control_mode', 'bend_iv', (M,)), 34: ('control_mode', 'bend_iii', (M,)),
     35: ('control_mode', 'bend_ii', (M,)), 36: ('control_mode', 'bend_i', (M,)),
     37: ('control_mode', 'front_tilt', (M,)), 38: ('control_mode', 'camera_tilt', (M, P)),

@@ -68,7 +68,7 @@ class RunStore(object):
         except OSError as error:
             raise RunError('%s: cannot make the run folder: %s' % (folder, error))
         if about is not None and not os.path.exists(os.path.join(folder, RUN_FILE)):
-            _fsync_write(os.path.join(folder, RUN_FILE), json.dumps(about, sort_keys=True).encode())
+            write_about(folder, about)
         self.findings, self.warnings = read_findings(folder, missing_ok=True)
 
     def next_number(self):
@@ -98,6 +98,13 @@ def _ends_unterminated(path):
     with open(path, 'rb') as stream:
         stream.seek(-1, io.SEEK_END)
         return stream.read(1) != b'\n'
+
+
+def write_about(folder, about):
+    """Write run.json of ``folder`` (whole or not at all: a new file renamed over the old)."""
+    path = os.path.join(folder, RUN_FILE)
+    _fsync_write(path + '.new', json.dumps(about, sort_keys=True).encode())
+    os.replace(path + '.new', path)
 
 
 def read_about(folder):

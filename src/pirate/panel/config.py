@@ -17,7 +17,7 @@ OPERATION_MODES = (MANUAL, PAB)
 
 #: What a channel can do; the Mapper has one handler per action.
 BUTTON_ACTIONS = ('control_mode', 'single_stop', 'play', 'stop', 'operation_mode',
-                  'no_limits_all', 'set_modifier', 'calibrate', 'pab')
+                  'no_limits_all', 'set_modifier', 'calibrate', 'pab', 'mark_finding')
 CONTINUOUS_ACTIONS = ('setpoint', 'limit')
 ACTIONS = ('none',) + CONTINUOUS_ACTIONS + BUTTON_ACTIONS
 #: Actions whose target is a setpoint element / a bend with a torque limit.

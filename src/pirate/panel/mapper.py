@@ -67,9 +67,12 @@ class Mapper(object):
     ``clock()`` returns seconds (monotonic), used for burst detection.
     ``mission``: ``command(text)`` to the mission executive, whose answer
     comes back through :meth:`mission_reply` (None: no mission executive).
+    ``finding``: ``mark(note)`` to the inspection recorder, which tells the
+    operator what it recorded (None: no recorder).
     """
 
-    def __init__(self, config, setpoint, control, limit, pab_client, led, log, clock, mission=None):
+    def __init__(self, config, setpoint, control, limit, pab_client, led, log, clock, mission=None,
+                 finding=None):
         if not isinstance(config, panel_config.PanelConfig):
             config = panel_config.from_params(config)
         self._config = config
@@ -80,6 +83,7 @@ class Mapper(object):
         self._led = led
         self._log = log
         self._clock = clock
+        self._finding = finding
         self._lock = threading.RLock()
         self.operation_mode = MANUAL
         self.playing = False
@@ -105,7 +109,7 @@ class Mapper(object):
             'control_mode': self._on_control_mode, 'single_stop': self._on_single_stop,
             'play': self._on_play, 'stop': self._on_stop,
             'operation_mode': self._on_operation_mode, 'no_limits_all': self._on_no_limits_all,
-            'calibrate': self._on_calibrate, 'pab': self._on_pab,
+            'calibrate': self._on_calibrate, 'pab': self._on_pab, 'mark_finding': self._on_mark_finding,
         }
         self.refresh_leds(force=True)
 
@@ -172,6 +176,12 @@ class Mapper(object):
     def _on_none(self, entry, value):
         self._log_once(('unused', entry.channel), 'channel %d (%s) is not used: %s'
                        % (entry.channel, entry.control, entry.function))
+
+    def _on_mark_finding(self, entry, value):
+        if self._finding is None:
+            self._log('%s: no inspection recorder to mark a finding with' % entry.control)
+            return
+        self._finding.mark('marked from the panel (%s)' % entry.control)
 
     def _on_setpoint(self, entry, value):
         if not self.playing:

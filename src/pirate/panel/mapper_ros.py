@@ -24,6 +24,9 @@ Setpoint / Control / Limit objects (report 4.5: one instance of each)::
   its ``names.MISSION_COMMAND_SERVICE`` from a worker thread (a slow or
   absent executive never blocks the panel); a mission whose executive is
   silent (no action status) for ``MISSION_SILENCE_S`` is dropped;
+- the mark button: calls the inspection recorder's
+  ``names.INSPECTION_MARK_SERVICE`` (kind ``other``) from a worker thread
+  and tells the operator its answer;
 - the panel's presence (pirate.panel.presence): the publishers of
   ``names.MIDI_INPUT_TOPIC`` and the MIDI driver's word on
   ``names.PANEL_DEVICE_TOPIC``, checked every tick.
@@ -39,7 +42,7 @@ from pirate.panel.mapper import Mapper
 from pirate.panel.mission_buttons import ExecutiveWatch
 from pirate.panel.presence import PanelPresence
 from pirate.msg import MidiInput, MidiOutput, MissionActionFeedback, MissionActionResult
-from pirate.srv import MissionCommand
+from pirate.srv import InspectionMark, MissionCommand
 from actionlib_msgs.msg import GoalStatusArray
 from std_msgs.msg import Bool, String
 
@@ -76,6 +79,30 @@ class MissionCommandClient(object):
                 self.reply(text, ok, message)
 
 
+class FindingClient(object):
+    """The mapper's mark button: each press marks a finding of kind
+    ``other`` through the inspection recorder's service, from one worker
+    thread; its answer goes to ``tell(text)``."""
+
+    def __init__(self, tell):
+        self._tell, self._todo = tell, queue.Queue()
+        self._proxy = rospy.ServiceProxy(names.INSPECTION_MARK_SERVICE, InspectionMark)
+        threading.Thread(target=self._work, name='finding_marks', daemon=True).start()
+
+    def mark(self, note):
+        self._todo.put(note)
+
+    def _work(self):
+        while not rospy.is_shutdown():
+            note = self._todo.get()
+            try:
+                self._proxy.wait_for_service(MISSION_SERVICE_WAIT_S)
+                answer = self._proxy(kind='other', note=note)
+                self._tell(answer.message)
+            except (rospy.ROSException, rospy.ServiceException) as err:
+                self._tell('finding not marked: no inspection recorder answers (%s)' % err)
+
+
 class _LedResync(rospy.SubscribeListener):
     """Send every LED to a panel that has just subscribed."""
 
@@ -102,7 +129,8 @@ class MapperRos(object):
             config = rospy.get_param('~')
         mission = MissionCommandClient()
         self.mapper = Mapper(config, setpoint, control, limit, pab_client,
-                             self._publish_led, self._tell, time.monotonic, mission=mission)
+                             self._publish_led, self._tell, time.monotonic, mission=mission,
+                             finding=FindingClient(self._tell))
         mission.reply = self.mapper.mission_reply
         self._presence = PanelPresence()
         self._executive = ExecutiveWatch(MISSION_SILENCE_S)

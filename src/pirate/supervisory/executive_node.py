@@ -14,7 +14,9 @@ level full|confirm|manual), which the panel's mission buttons call; between
 missions ``level X`` sets the level of the next mission whose goal names
 none (the panel's level buttons work before a mission). The estimated position
 is published as a pose on the map (``/pirate/mission/pose``, frame ``map``)
-and as millimetres along the path (``/pirate/mission/along_mm``), 5 Hz.
+and as millimetres along the path (``/pirate/mission/along_mm``), with how
+far it may be off (``/pirate/mission/uncertainty_mm``, the localiser's
+bound), 5 Hz.
 
 Params (private): ``~goal_timeout`` (s of robot time one PAB may take
 before the executive cancels it, default 600).
@@ -109,6 +111,7 @@ class MissionExecutiveNode(object):
         self._next_level = ex.FULL      # for a goal that names no level; the panel sets it between missions
         self._pose_pub = rospy.Publisher(names.MISSION_POSE_TOPIC, PoseStamped, queue_size=1)
         self._along_pub = rospy.Publisher(names.MISSION_ALONG_TOPIC, Float64, queue_size=1)
+        self._uncertainty_pub = rospy.Publisher(names.MISSION_UNCERTAINTY_TOPIC, Float64, queue_size=1)
         self._markers_pub = rospy.Publisher(names.MISSION_MARKERS_TOPIC, MarkerArray, queue_size=2, latch=True)
         self._server = actionlib.ActionServer(names.MISSION_ACTION, MissionAction, self._on_goal,
                                               self._on_cancel, auto_start=False)
@@ -198,7 +201,8 @@ class MissionExecutiveNode(object):
             running = self._running
         if running is None or self.robot.odometry_mm is None:
             return
-        along_m = running[1].localiser.estimate(self.robot.odometry_mm)
+        odometry_mm = self.robot.odometry_mm
+        along_m = running[1].localiser.estimate(odometry_mm)
         position, quaternion = pose_along(running[2], along_m)
         pose = PoseStamped()
         pose.header.stamp, pose.header.frame_id = rospy.Time.now(), names.MAP_FRAME
@@ -206,6 +210,7 @@ class MissionExecutiveNode(object):
         (pose.pose.orientation.x, pose.pose.orientation.y, pose.pose.orientation.z,
          pose.pose.orientation.w) = quaternion
         self._pose_pub.publish(pose)
+        self._uncertainty_pub.publish(Float64(data=running[1].localiser.uncertainty_m(odometry_mm) * 1000.0))
         self._along_pub.publish(Float64(data=along_m * 1000.0))
 
 

@@ -49,14 +49,20 @@ class Localiser(object):
             return self.anchor_m
         return self.anchor_m + (odometry_mm - self.anchor_odometry) / 1000.0
 
+    def uncertainty_m(self, odometry_mm):
+        """How far the robot may be from :meth:`estimate` (m): the bound
+        within which the localiser takes a junction to be the map's, the
+        tolerance plus the drift over the distance since the anchor."""
+        return self._tolerance_m + self._drift * abs(self.estimate(odometry_mm) - self.anchor_m)
+
     def junction_found(self, junction, odometry_mm, sign):
         """A junction PAB detected ``junction`` (its leading V lost the wall)
         at ``odometry_mm`` (the robot's odometry then, not the PAB's
         distance from its start), driving forward (``sign`` 1) or back (-1).
         Re-anchor there, or raise :class:`MapMismatch`."""
+        allowed = self.uncertainty_m(odometry_mm)
         estimated = self.update(odometry_mm)
         mapped = sensed_at_m(junction, sign, self._robot)
-        allowed = self._tolerance_m + self._drift * abs(estimated - self.anchor_m)
         if abs(estimated - mapped) > allowed:
             raise MapMismatch('%s found with the robot at %.0f mm, the map has it at %.0f mm '
                               '(more than %.0f mm apart)' % (junction.name, estimated * 1000, mapped * 1000,

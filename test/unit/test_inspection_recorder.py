@@ -1,0 +1,98 @@
+"""The findings recorder: a mark placed where the robot is, with its frames;
+findings survive the recorder's death (a new one reads them all back)."""
+import math
+
+import pytest
+
+from pirate.inspection import findings as fd
+from pirate.inspection import recorder as rec
+from pirate.inspection import store
+from pirate.supervisory.plan_cli import load_settings
+from pirate.world import network
+
+import inspection_run
+
+SETTINGS = {'locate_tolerance_mm': 150, 'odometry_drift': 0.05}
+JOINTS = ['camera_tilt', 'camera_pan']
+
+
+def _frame(colour, stamp_s=1.0):
+    width, height = 8, 6
+    return rec.Frame(width, height, 'rgb8', width * 3, bytes(colour) * (width * height), stamp_s)
+
+
+def _recorder(folder, settings=SETTINGS):
+    pipe_map = network.load(network.world_path(inspection_run.MAP))
+    launch_m = pipe_map.points['launch_pit']
+    recorder = rec.Recorder(store.RunStore(folder, {'map': inspection_run.MAP, 'launch_pit_mm': launch_m * 1000}),
+                            settings)
+    recorder.set_map(pipe_map, launch_m)
+    return recorder
+
+
+def test_the_settings_the_node_uses_have_what_the_recorder_needs(tmp_path):
+    _recorder(str(tmp_path), load_settings()[0]).where()
+
+
+def test_before_any_estimate_the_robot_is_at_the_launch_pit_then_follows_its_odometry(tmp_path):
+    recorder = _recorder(str(tmp_path))
+    recorder.robot_state(JOINTS, [0.0, 0.0], math.pi / 2, 5000.0)
+    assert recorder.where() == pytest.approx((0.4, 0.15))
+    recorder.robot_state(JOINTS, [0.0, 0.0], math.pi / 2, 5600.0)
+    assert recorder.where() == pytest.approx((1.0, 0.15 + 0.05 * 0.6))
+
+
+def test_the_missions_estimate_re_anchors_and_the_way_back_counts_down(tmp_path):
+    recorder = _recorder(str(tmp_path))
+    recorder.robot_state(JOINTS, [0.0, 0.0], math.pi / 2, 9000.0)
+    recorder.uncertainty(180.0)
+    recorder.estimate(3200.0)
+    assert recorder.where() == pytest.approx((3.2, 0.18))
+    recorder.robot_state(JOINTS, [0.0, 0.0], math.pi / 2, 8000.0)      # 1 m back towards the launch pit
+    assert recorder.where() == pytest.approx((2.2, 0.18 + 0.05))
+
+
+def test_a_mark_records_the_place_the_clock_and_both_frames(tmp_path):
+    recorder = _recorder(str(tmp_path))
+    recorder.robot_state(JOINTS, [0.5, 0.0], math.pi / 2, 0.0)       # tilted up: 12 o'clock
+    recorder.estimate(1500.0)
+    recorder.frame('front', _frame((255, 0, 0)))
+    recorder.frame('rear', _frame((0, 255, 0)))
+    finding = recorder.mark('Leak', 'hiss', 12.5, 'service')
+    assert finding['kind'] == 'leak' and finding['number'] == 1
+    assert finding['position']['from_launch_pit_mm'] == pytest.approx(1100)
+    assert finding['position']['segment'] == 'pipe_2' and finding['position']['clock_text'] == "12 o'clock"
+    assert sorted(finding['frames']) == ['front', 'rear'] and finding['no_frame'] == {}
+
+
+def test_a_camera_without_a_frame_is_said_and_the_finding_kept(tmp_path):
+    recorder = _recorder(str(tmp_path))
+    recorder.robot_state(JOINTS, [0.0, 0.0], math.pi / 2, 0.0)
+    recorder.frame('front', rec.Frame(8, 6, 'yuv422', 16, b'', 1.0))
+    finding = recorder.mark('other', '', 1.0, 'panel')
+    assert finding['frames'] == {}
+    assert 'yuv422' in finding['no_frame']['front'] and 'none received' in finding['no_frame']['rear']
+
+
+def test_no_map_and_a_bad_kind_are_refused_and_nothing_is_written(tmp_path):
+    recorder = rec.Recorder(store.RunStore(str(tmp_path)), SETTINGS)
+    with pytest.raises(fd.FindingError, match='no map'):
+        recorder.mark('leak', '', 0.0, 'service')
+    with pytest.raises(fd.FindingError, match='not one of'):
+        _recorder(str(tmp_path)).mark('crack', '', 0.0, 'service')
+    assert store.read_findings(str(tmp_path), missing_ok=True)[0] == []
+
+
+def test_findings_survive_the_recorders_death(tmp_path):
+    folder = str(tmp_path / 'run')
+    recorder = _recorder(folder)
+    recorder.robot_state(JOINTS, [0.0, 0.6], math.pi / 2, 0.0)
+    recorder.frame('front', _frame((9, 9, 9)))
+    for note in ('one', 'two'):
+        recorder.mark('deposit', note, 1.0, 'panel')
+    del recorder                                    # the node died
+    again = _recorder(folder)
+    again.robot_state(JOINTS, [0.0, 0.0], math.pi / 2, 0.0)
+    again.mark('water', 'three', 2.0, 'service')
+    found, warnings = store.read_findings(folder)
+    assert [(f['number'], f['note']) for f in found] == [(1, 'one'), (2, 'two'), (3, 'three')] and not warnings
