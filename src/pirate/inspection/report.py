@@ -20,7 +20,7 @@ SVG_WIDTH, SVG_HEIGHT, SVG_MARGIN = 760, 420, 40
 SAMPLE_M = 0.01
 STYLE = """body{font-family:sans-serif;margin:2em;max-width:1000px}
 table{border-collapse:collapse}td,th{border:1px solid #999;padding:4px 8px;text-align:left}
-.finding{border:1px solid #ccc;margin:1em 0;padding:0.5em 1em}.finding img{width:320px;max-width:45%;margin:4px;image-rendering:pixelated}
+.finding{border:1px solid #ccc;margin:1em 0;padding:0.5em 1em}.finding figure{display:inline-block;margin:4px}.finding img{width:320px;image-rendering:pixelated}
 .warn{color:#a60}"""
 
 
@@ -88,14 +88,15 @@ def map_svg(network, launch_m, reached_m, findings):
             % (SVG_WIDTH, SVG_HEIGHT, SVG_WIDTH, SVG_HEIGHT, ''.join(parts)))
 
 
-def _image(folder, name, warnings):
+def _image(folder, camera, name, warnings):
     path = os.path.join(folder, name)
     if not os.path.exists(path):
         warnings.append('%s: missing (named by a finding)' % path)
         return '<p class="warn">frame %s missing</p>' % _e(name)
     with open(path, 'rb') as stream:
         data = base64.b64encode(stream.read()).decode('ascii')
-    return '<img alt="%s" src="data:image/png;base64,%s"/>' % (_e(name), data)
+    return ('<figure><img alt="%s" src="data:image/png;base64,%s"/><figcaption>%s camera</figcaption></figure>'
+            % (_e(name), data, _e(camera)))
 
 
 def _where(pos):
@@ -107,7 +108,7 @@ def _where(pos):
 def finding_html(folder, finding, warnings):
     """One finding: number, kind, note, time, where, its frames."""
     frames = finding.get('frames') or {}
-    images = ''.join(_image(folder, frames[camera], warnings) for camera in sorted(frames))
+    images = ''.join(_image(folder, camera, frames[camera], warnings) for camera in sorted(frames))
     missing = ''.join('<p class="warn">%s camera: %s</p>' % (_e(c), _e(why))
                       for c, why in sorted((finding.get('no_frame') or {}).items()))
     return ('<div class="finding" id="finding-%d"><h3>Finding %d: %s</h3><p>%s</p><p>%s (%s)</p>'
