@@ -96,3 +96,11 @@ def test_findings_survive_the_recorders_death(tmp_path):
     again.mark('water', 'three', 2.0, 'service')
     found, warnings = store.read_findings(folder)
     assert [(f['number'], f['note']) for f in found] == [(1, 'one'), (2, 'two'), (3, 'three')] and not warnings
+
+
+def test_the_missions_uncertainty_arriving_after_its_estimate_still_counts(tmp_path):
+    recorder = _recorder(str(tmp_path))
+    recorder.robot_state(JOINTS, [0.0, 0.0], math.pi / 2, 0.0)
+    recorder.estimate(2000.0)
+    recorder.uncertainty(230.0)
+    assert recorder.where() == pytest.approx((2.0, 0.23))

@@ -71,3 +71,5 @@ def test_a_restarted_recorder_goes_on_with_the_current_run_unless_told_to_start_
     import datetime
     later = store.current_run(root, new=True, now=datetime.datetime(2030, 1, 2, 3, 4, 5))
     assert later == 'run-20300102-030405' and store.current_run(root) == later
+    again = store.current_run(root, new=True, now=datetime.datetime(2030, 1, 2, 3, 4, 5))
+    assert again == 'run-20300102-030405-2'

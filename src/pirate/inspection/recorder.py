@@ -54,8 +54,11 @@ class Recorder(object):
             self.anchor = self.anchor._replace(odometry_mm=odometry_mm)
 
     def uncertainty(self, uncertainty_mm):
-        """The mission's uncertainty (mm), for the next estimate."""
+        """The mission's uncertainty (mm): of its estimate now, whichever of
+        the two arrives first, and of the next."""
         self._uncertainty_m = uncertainty_mm / 1000.0
+        if self.anchor is not None:
+            self.anchor = self.anchor._replace(uncertainty_m=self._uncertainty_m)
 
     def estimate(self, along_mm):
         """The mission's estimate (mm along the map): re-anchors here."""

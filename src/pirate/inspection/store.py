@@ -42,16 +42,20 @@ def new_run_name(now=None):
 
 def current_run(root, new=False, now=None):
     """The run a recorder starts or goes on with under ``root``: the one
-    named in ``root/current`` unless ``new`` or none is named; a new one is
-    named there."""
+    named in ``root/current`` unless ``new`` or none is named; a new one
+    (its folder made, so two started in the same second differ) is named
+    there."""
     marker = os.path.join(root, CURRENT_FILE)
     if not new and os.path.isfile(marker):
         with open(marker) as stream:
             name = stream.read().strip()
         if name:
             return name
-    name = new_run_name(now)
-    os.makedirs(root, exist_ok=True)
+    name, taken = new_run_name(now), 1
+    while os.path.exists(os.path.join(root, name if taken == 1 else '%s-%d' % (name, taken))):
+        taken += 1
+    name = name if taken == 1 else '%s-%d' % (name, taken)
+    os.makedirs(os.path.join(root, name))
     _fsync_write(marker, (name + '\n').encode())
     return name
 

@@ -1,0 +1,89 @@
+#!/usr/bin/env python3
+"""rostest: /pirate/inspection/mark records a finding where the robot is,
+with both cameras' frames, in the run folder, and the findings topic (latched)
+shows it; a bad kind records nothing."""
+import json
+import math
+import os
+import threading
+import unittest
+
+import rospy
+import rostest
+from sensor_msgs.msg import Image
+from std_msgs.msg import Float64, String
+
+from pirate import names
+from pirate.msg import RobotState
+from pirate.srv import InspectionMark
+
+DEADLINE_S = 60.0
+WIDTH, HEIGHT = 16, 12
+
+
+def _image(encoding, pixel):
+    return Image(width=WIDTH, height=HEIGHT, encoding=encoding, step=WIDTH * 3, data=bytes(pixel) * (WIDTH * HEIGHT))
+
+
+class InspectionMarkTest(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('inspection_mark_test')
+        cls.findings, cls.changed = None, threading.Condition()
+        rospy.Subscriber(names.INSPECTION_FINDINGS_TOPIC, String, cls._on_findings)
+        latched = dict(queue_size=1, latch=True)
+        cls.state = rospy.Publisher(names.ROBOT_STATE_TOPIC, RobotState, **latched)
+        cls.front = rospy.Publisher(names.FRONT_CAMERA_TOPIC, Image, **latched)
+        cls.rear = rospy.Publisher(names.REAR_CAMERA_TOPIC, Image, **latched)
+        cls.uncertainty = rospy.Publisher(names.MISSION_UNCERTAINTY_TOPIC, Float64, **latched)
+        cls.along = rospy.Publisher(names.MISSION_ALONG_TOPIC, Float64, **latched)
+        rospy.wait_for_service(names.INSPECTION_MARK_SERVICE, timeout=DEADLINE_S)
+        cls.mark = rospy.ServiceProxy(names.INSPECTION_MARK_SERVICE, InspectionMark)
+
+    @classmethod
+    def _on_findings(cls, msg):
+        with cls.changed:
+            cls.findings = json.loads(msg.data)
+            cls.changed.notify_all()
+
+    def _wait(self, what, predicate):
+        with self.changed:
+            self.assertTrue(self.changed.wait_for(predicate, DEADLINE_S), 'waited for %s' % what)
+
+    def _heard(self, publisher):
+        self._wait('%s to be heard' % publisher.resolved_name, lambda: publisher.get_num_connections() > 0)
+
+    def test_a_mark_records_the_place_and_both_frames(self):
+        self._wait('the findings of the new run', lambda: self.findings is not None)
+        self.assertEqual(self.findings['findings'], [])
+        for publisher in (self.state, self.front, self.rear, self.uncertainty, self.along):
+            self._heard(publisher)
+        self.state.publish(RobotState(name=['camera_tilt', 'camera_pan'], position=[0.6, 0.0],
+                                      orientation=math.pi / 2, odometry=0.0))
+        self.front.publish(_image('rgb8', (200, 40, 40)))
+        self.rear.publish(_image('bgr8', (40, 40, 200)))
+        expected = "1990 mm from the launch pit (+/- 170 mm), 12 o'clock"
+        answer = None
+        for _ in range(50):       # until the node has heard the state and the estimate (in flight)
+            self.uncertainty.publish(Float64(data=170.0))
+            self.along.publish(Float64(data=2390.0))
+            rospy.sleep(0.1)
+            answer = self.mark(kind='leak', note='hiss')
+            if expected in answer.message or not answer.ok:
+                break
+        self.assertTrue(answer.ok, answer.message)
+        self.assertIn(expected, answer.message)
+        self._wait('the finding on the topic', lambda: any(
+            f['note'] == 'hiss' and f['position']['along_mm'] == 2390.0 for f in self.findings['findings']))
+        last = self.findings['findings'][-1]
+        self.assertEqual(sorted(last['frames']), ['front', 'rear'])
+        for name in last['frames'].values():
+            self.assertGreater(os.path.getsize(os.path.join(self.findings['run'], name)), 0)
+        refused = self.mark(kind='crack', note='')
+        self.assertFalse(refused.ok)
+        self.assertIn('not one of', refused.message)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('pirate', 'inspection_mark', InspectionMarkTest)
