@@ -123,3 +123,12 @@ def test_a_missing_frame_is_shown_as_missing(tmp_path):
     os.remove(os.path.join(folder, 'finding_002_rear.png'))
     page, warnings = report.build(folder)
     assert 'frame finding_002_rear.png missing' in page and any('finding_002_rear.png' in w for w in warnings)
+
+
+def test_a_run_that_names_no_map_is_reported_without_one_and_says_so(tmp_path):
+    folder = str(tmp_path / 'run')
+    inspection_run.record(folder)
+    store.write_about(folder, {'run': 'no map'})
+    page, warnings = report.build(folder)
+    assert '<svg' not in page and any('names no map' in w for w in warnings)
+    assert page.count('class="finding"') == len(inspection_run.MARKED)

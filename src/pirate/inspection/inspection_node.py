@@ -93,7 +93,12 @@ class InspectionNode(object):
         with self._lock:
             self.recorder.set_map(pipe_map, launch_m)
         about = {'run': os.path.basename(self.folder), 'map': name, 'launch_pit_mm': launch_m * 1000}
-        if store.read_about(self.folder).get('map') != name:
+        before = store.read_about(self.folder)
+        if before.get('map') not in (None, name) and self.store.findings:
+            rospy.logwarn('inspection: the run %s holds findings on map %s and goes on with map %s: its report draws '
+                          'them on %s (start a new run for another map: new_run:=true)',
+                          self.folder, before['map'], name, name)
+        if before != about:
             store.write_about(self.folder, about)
         rospy.loginfo('inspection: map %s, launch pit at %.0f mm', name, launch_m * 1000)
 
