@@ -17,6 +17,8 @@ from pirate.inspection import mission_log, store
 from pirate.world import network as nw
 
 SVG_WIDTH, SVG_HEIGHT, SVG_MARGIN = 760, 420, 40
+PIPE_MAX_PX = 12        # a short network's pipe drawn no wider than this
+LABEL_PX = 14           # labels of findings at one place are stacked this far apart
 SAMPLE_M = 0.01
 STYLE = """body{font-family:sans-serif;margin:2em;max-width:1000px}
 table{border-collapse:collapse}td,th{border:1px solid #999;padding:4px 8px;text-align:left}
@@ -41,12 +43,14 @@ def _e(text):
 
 def _project(points):
     """2-D (SVG) coordinates of 3-D points: the two world axes along which
-    the network spreads most, scaled into the drawing; and the scale."""
+    the network spreads most, scaled into the drawing; the scale (px/m)
+    and the drawing's height (px, as much as the network needs)."""
     spans = [max(p[k] for p in points) - min(p[k] for p in points) for k in range(3)]
     a, b = sorted(sorted(range(3), key=lambda k: -spans[k])[:2])
     low_a, low_b = min(p[a] for p in points), min(p[b] for p in points)
     scale = min((SVG_WIDTH - 2 * SVG_MARGIN) / max(spans[a], 1e-3), (SVG_HEIGHT - 2 * SVG_MARGIN) / max(spans[b], 1e-3))
-    return (lambda p: (SVG_MARGIN + (p[a] - low_a) * scale, SVG_HEIGHT - SVG_MARGIN - (p[b] - low_b) * scale)), scale
+    height = spans[b] * scale + 2 * SVG_MARGIN
+    return (lambda p: (SVG_MARGIN + (p[a] - low_a) * scale, height - SVG_MARGIN - (p[b] - low_b) * scale)), scale, height
 
 
 def _along(network, from_m, to_m):
@@ -66,8 +70,8 @@ def map_svg(network, launch_m, reached_m, findings):
     pipe = _along(network, 0.0, network.length)
     stubs = [[p.stub.origin, tuple(o + p.diameter * a for o, a in zip(p.stub.origin, p.stub.axes[0]))]
              for p in network.pieces if p.stub is not None]
-    to_svg, scale = _project(pipe + [s for stub in stubs for s in stub])
-    width = max(2.0, network.pieces[0].diameter * scale)
+    to_svg, scale, height = _project(pipe + [s for stub in stubs for s in stub])
+    width = min(PIPE_MAX_PX, max(2.0, network.pieces[0].diameter * scale))
     parts = [_polyline(to_svg, pipe, 'stroke:#bbb;stroke-width:%.1f' % width)]
     parts += [_polyline(to_svg, s, 'stroke:#ddd;stroke-width:%.1f' % width) for s in stubs]
     if reached_m is not None and abs(reached_m - launch_m) > 1e-3:
@@ -76,16 +80,21 @@ def map_svg(network, launch_m, reached_m, findings):
         x, y = to_svg(network.locate(along)[1].origin)
         parts.append('<circle cx="%.1f" cy="%.1f" r="4" fill="#26c"/><text x="%.1f" y="%.1f" font-size="12" '
                      'fill="#26c">%s</text>' % (x, y, x + 6, y + 16, _e(name)))
+    labels = []
     for finding in findings:
         pos = finding['position']
         along, spread = pos['along_mm'] / 1000.0, pos['uncertainty_mm'] / 1000.0
         span = _along(network, max(0.0, along - spread), min(network.length, along + spread))
         x, y = to_svg(network.locate(along)[1].origin)
+        label_y = y - 7
+        while any(abs(x - lx) < LABEL_PX and abs(label_y - ly) < LABEL_PX for lx, ly in labels):
+            label_y -= LABEL_PX
+        labels.append((x, label_y))
         parts.append(_polyline(to_svg, span, 'stroke:orange;stroke-width:6;stroke-opacity:0.6'))
         parts.append('<circle cx="%.1f" cy="%.1f" r="6" fill="#d22"/><text x="%.1f" y="%.1f" font-size="13" '
-                     'font-weight="bold" fill="#d22">%d</text>' % (x, y, x + 7, y - 7, finding['number']))
+                     'font-weight="bold" fill="#d22">%d</text>' % (x, y, x + 7, label_y, finding['number']))
     return ('<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" viewBox="0 0 %d %d" id="map">%s</svg>'
-            % (SVG_WIDTH, SVG_HEIGHT, SVG_WIDTH, SVG_HEIGHT, ''.join(parts)))
+            % (SVG_WIDTH, height, SVG_WIDTH, height, ''.join(parts)))
 
 
 def _image(folder, camera, name, warnings):
