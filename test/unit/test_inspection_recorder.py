@@ -1,6 +1,8 @@
 """The findings recorder: a mark placed where the robot is, with its frames;
 findings survive the recorder's death (a new one reads them all back)."""
+import json
 import math
+import os
 
 import pytest
 
@@ -104,3 +106,16 @@ def test_the_missions_uncertainty_arriving_after_its_estimate_still_counts(tmp_p
     recorder.estimate(2000.0)
     recorder.uncertainty(230.0)
     assert recorder.where() == pytest.approx((2.0, 0.23))
+
+
+def test_the_missions_heard_make_the_runs_timeline(tmp_path):
+    folder = str(tmp_path)
+    recorder = _recorder(folder)
+    recorder.mission_goal(1.0, 'inspection_network_90', ['launch_pit', 'target'])
+    for stamp, step, state in ((2.0, 1, 'running'), (3.0, 1, 'running'), (9.0, 2, 'waiting')):
+        recorder.mission_feedback(stamp, step, 9, 'DRIVE', '', 600.0, state, 'resume' if state == 'waiting' else '')
+    recorder.mission_result(20.0, 'succeeded', '9 PABs')
+    with open(os.path.join(folder, store.TIMELINE_FILE)) as stream:
+        texts = [json.loads(line)['text'] for line in stream]
+    assert texts == ['mission sent: inspection_network_90, launch_pit -> target', 'step 1/9: DRIVE, running',
+                     'step 2/9: DRIVE, waiting for resume', 'mission succeeded: 9 PABs']

@@ -53,7 +53,7 @@ def test_the_report_in_a_browser_shows_every_finding_and_the_dig_list_in_order(w
     digs = re.findall(r'dig at ([0-9.]+) m \(\+/- 0.16 m\) from the launch pit along the route', text)
     assert digs == ['0.60', '1.70', '2.70']          # leak, deposit, corrosion: 1.0, 2.1, 3.1 m on the map
     assert len(re.findall(r'<img [^>]*src="data:image/png;base64,', dom)) == 2 * len(inspection_run.MARKED)
-    assert 'No mission log in this run' in text
+    assert 'No mission in this run' in text
 
 
 @needs_chromium
@@ -73,14 +73,16 @@ def test_the_report_is_self_contained(written):
     assert not re.search(r'(src|href)="(?!data:)', text) and '<link' not in text
 
 
-def test_the_report_shows_the_mission_log_as_the_timeline(tmp_path):
+def test_the_report_merges_the_recorders_timeline_the_mission_log_and_the_findings(tmp_path):
     folder = str(tmp_path / 'run')
     inspection_run.record(folder)
+    store.RunStore(folder).log_event({'stamp_s': 7.0, 'text': 'step 2/9: DRIVE, running', 'along_mm': 500.0})
     with open(os.path.join(folder, 'mission.jsonl'), 'w') as stream:
         stream.write('{"stamp_s": 5.0, "text": "step 1/9: CLAMP_STRAIGHT", "along_mm": 400}\n'
                      '{"stamp_s": 25.0, "text": "mission succeeded"}\nnot json\n')
     page, warnings = report.build(folder)
-    order = [page.index(s) for s in ('step 1/9', 'finding 1 marked', 'finding 2 marked', 'mission succeeded')]
+    order = [page.index(s) for s in ('step 1/9', 'step 2/9', 'finding 1 marked', 'finding 2 marked',
+                                     'mission succeeded')]
     assert order == sorted(order) and any('line 3: skipped' in w for w in warnings)
 
 

@@ -10,7 +10,8 @@ already holds.
 Hears: ``/pirate/state`` (camera pan/tilt, roll, odometry), the mission's
 estimate (``/pirate/mission/along_mm``, ``/pirate/mission/uncertainty_mm``),
 the mission's goal (its map; the launch pit is the map's ``launch_pit``
-point, else the mission's first point) and both cameras
+point, else the mission's first point), feedback and result (the run's
+timeline) and both cameras
 (``/pirate/front_camera/image_raw``, ``/pirate/rear_camera/image_raw``,
 sensor_msgs/Image; the latest frame of each is kept).
 
@@ -34,7 +35,7 @@ from pirate import names
 from pirate.inspection import findings as fd
 from pirate.inspection import recorder as rec
 from pirate.inspection import store
-from pirate.msg import MissionActionGoal, RobotState
+from pirate.msg import MissionActionFeedback, MissionActionGoal, MissionActionResult, RobotState
 from pirate.srv import InspectionMark, InspectionMarkResponse
 from pirate.supervisory.plan_cli import load_settings
 from pirate.world import network
@@ -69,6 +70,11 @@ class InspectionNode(object):
         rospy.Subscriber(names.MISSION_ALONG_TOPIC, Float64, self._locked(
             lambda msg: self.recorder.estimate(msg.data)), queue_size=5)
         rospy.Subscriber(names.MISSION_ACTION + '/goal', MissionActionGoal, self._on_mission, queue_size=2)
+        rospy.Subscriber(names.MISSION_ACTION + '/feedback', MissionActionFeedback, self._locked(
+            lambda msg: self.recorder.mission_feedback(rospy.get_time(), *_progress(msg.feedback))), queue_size=10)
+        rospy.Subscriber(names.MISSION_ACTION + '/result', MissionActionResult, self._locked(
+            lambda msg: self.recorder.mission_result(rospy.get_time(), msg.result.status, msg.result.message)),
+            queue_size=10)
         for camera, topic in (('front', names.FRONT_CAMERA_TOPIC), ('rear', names.REAR_CAMERA_TOPIC)):
             rospy.Subscriber(topic, Image, self._on_image, callback_args=camera, queue_size=1, buff_size=2 ** 24)
         rospy.Service(names.INSPECTION_MARK_SERVICE, InspectionMark, self._on_mark)
@@ -104,6 +110,8 @@ class InspectionNode(object):
 
     def _on_mission(self, msg):
         self._use_map(msg.goal.map, list(msg.goal.points))
+        with self._lock:
+            self.recorder.mission_goal(rospy.get_time(), msg.goal.map, list(msg.goal.points))
 
     def _on_state(self, msg):
         if not msg.stale:
@@ -132,6 +140,12 @@ class InspectionNode(object):
     def _publish_findings(self):
         self._findings_pub.publish(String(data=json.dumps(
             {'run': self.folder, 'findings': self.store.findings}, sort_keys=True)))
+
+
+def _progress(feedback):
+    """The recorder's mission_feedback arguments after the time, from a MissionFeedback."""
+    return (feedback.step, feedback.steps, feedback.pab, feedback.option, feedback.along_mm, feedback.state,
+            feedback.waiting_for)
 
 
 def main():

@@ -1,6 +1,8 @@
-"""The mission executive's log of a run, read for the report's timeline: pure.
+"""The timeline of a run, read for the report: pure.
 
-The log is JSON Lines, one object per event, in the run folder
+Two JSON Lines files, one object per event: the recorder's
+(pirate.inspection.store.TIMELINE_FILE: the missions as it heard them)
+and the mission executive's log, in the run folder
 (:data:`MISSION_LOG_FILE`) or given to the report. An event's time is its
 first of :data:`TIME_KEYS` present, its words its first of
 :data:`TEXT_KEYS` (else the whole object); anything else is shown as it is.

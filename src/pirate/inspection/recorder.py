@@ -12,6 +12,9 @@ without a mission by the odometry from that anchor, the uncertainty
 growing by the localiser's drift (config/supervisory.yaml
 ``odometry_drift``). Before any estimate the anchor is the launch pit, with
 the localiser's tolerance as its uncertainty.
+
+The missions heard (goal, each step as it starts or waits, the result) go
+into the run's timeline (``timeline.jsonl``) with their robot time.
 """
 import collections
 import datetime
@@ -38,6 +41,7 @@ class Recorder(object):
         self.joints, self.roll, self.odometry_mm = {}, fd.UPRIGHT_RAD, None
         self._uncertainty_m = self._tolerance_m
         self.frames = {}
+        self._mission_step = None
 
     # --- what the node hears ------------------------------------------------
     def set_map(self, pipe_map, launch_m):
@@ -63,6 +67,30 @@ class Recorder(object):
     def estimate(self, along_mm):
         """The mission's estimate (mm along the map): re-anchors here."""
         self.anchor = Anchor(along_mm / 1000.0, self.odometry_mm, self._uncertainty_m)
+
+    def mission_goal(self, stamp_s, map_name, points):
+        """A mission was sent: into the timeline."""
+        self._mission_step = None
+        self.run.log_event({'stamp_s': stamp_s, 'text': 'mission sent: %s, %s' % (map_name, ' -> '.join(points))})
+
+    def mission_feedback(self, stamp_s, step, steps, pab, option, along_mm, state, waiting_for):
+        """A mission's feedback: into the timeline when its step or state changes."""
+        key = (step, state, waiting_for)
+        if key == self._mission_step:
+            return
+        self._mission_step = key
+        text = 'step %d/%d: %s%s, %s%s' % (step, steps, pab, ' ' + option if option else '', state,
+                                           ' for ' + waiting_for if waiting_for else '')
+        self.run.log_event({'stamp_s': stamp_s, 'text': text, 'along_mm': round(along_mm, 1)})
+
+    def mission_result(self, stamp_s, status, message):
+        """A mission's end: into the timeline."""
+        self._mission_step = None
+        along_m = self.where()[0] if self.anchor is not None else None
+        event = {'stamp_s': stamp_s, 'text': 'mission %s: %s' % (status, message)}
+        if along_m is not None:
+            event['along_mm'] = round(along_m * 1000, 1)
+        self.run.log_event(event)
 
     def frame(self, camera, frame):
         """The latest :data:`Frame` of ``camera`` (one of :data:`CAMERAS`)."""

@@ -135,18 +135,24 @@ def dig_list_html(findings):
             '</table>' % rows)
 
 
+def _time(t):
+    """Robot time as '12.3 s'; anything else as it is."""
+    return '%.1f s' % t if isinstance(t, (int, float)) else ('' if t is None else str(t))
+
+
 def timeline_html(events, findings):
-    """The mission's events (and the findings, by robot time, when the log
-    has times), in order; a note when the run has no mission log."""
+    """The missions' events (the recorder's timeline and the executive's
+    log; with the findings, by robot time, when every event has a time), in
+    order; a note when the run has none."""
     if not events:
-        return '<p id="timeline">No mission log in this run: no timeline.</p>'
+        return '<p id="timeline">No mission in this run: no timeline.</p>'
     rows = [(t, text, along) for t, text, along in events]
     if all(isinstance(t, (int, float)) for t, _, _ in rows):
         rows += [(f.get('stamp_s'), 'finding %d marked: %s' % (f['number'], f.get('kind')),
                   f['position']['along_mm']) for f in findings if isinstance(f.get('stamp_s'), (int, float))]
         rows.sort(key=lambda r: r[0])
     cells = ''.join('<tr><td>%s</td><td>%s</td><td>%s</td></tr>' % (
-        _e('' if t is None else t), _e('' if along is None else '%.0f' % along), _e(text)) for t, text, along in rows)
+        _e(_time(t)), _e('' if along is None else '%.0f' % along), _e(text)) for t, text, along in rows)
     return '<table id="timeline"><tr><th>time</th><th>along (mm)</th><th>event</th></tr>%s</table>' % cells
 
 
@@ -170,8 +176,12 @@ def build(folder, map_override=None, log_path=None):
                              % (folder, store.FINDINGS_FILE))
     about = store.read_about(folder)
     network = _network(about, map_override, warnings)
-    events, log_warnings = mission_log.read_events(log_path or os.path.join(folder, mission_log.MISSION_LOG_FILE))
-    warnings += log_warnings
+    events = []
+    for path in (os.path.join(folder, store.TIMELINE_FILE),
+                 log_path or os.path.join(folder, mission_log.MISSION_LOG_FILE)):
+        read, log_warnings = mission_log.read_events(path)
+        events += read
+        warnings += log_warnings
     alongs = [f['position']['along_mm'] / 1000.0 for f in findings] + [a / 1000.0 for _, _, a in events if a]
     launch_m = about.get('launch_pit_mm', 0.0) / 1000.0
     reached = max(alongs, key=lambda a: abs(a - launch_m)) if alongs else None

@@ -5,6 +5,7 @@ A run is a folder (default ``~/.ros/pirate/inspections/<run>/``)::
     run.json            the run: name, map, launch pit (written once)
     findings.jsonl      one finding per line, appended and fsynced as marked
     finding_001_front.png, finding_001_rear.png ...   the camera frames
+    timeline.jsonl      the missions as the recorder heard them: goals, steps, results
     mission.jsonl       the mission executive's log, when it writes one there
 
 A finding's frames are written (and fsynced) before its line, so a line
@@ -18,6 +19,7 @@ import json
 import os
 
 FINDINGS_FILE = 'findings.jsonl'
+TIMELINE_FILE = 'timeline.jsonl'
 RUN_FILE = 'run.json'
 #: The file in the runs folder naming the run a restarted node goes on with.
 CURRENT_FILE = 'current'
@@ -87,13 +89,20 @@ class RunStore(object):
 
     def append(self, finding):
         """Append one finding (a JSON-able dict with a ``number``) as a line, fsynced."""
-        line = json.dumps(finding, sort_keys=True) + '\n'
-        path = os.path.join(self.folder, FINDINGS_FILE)
-        if _ends_unterminated(path):      # a line cut short by a dead node: start a fresh line
-            line = '\n' + line
-        _fsync_write(path, line.encode(), mode='ab')
+        _append_line(os.path.join(self.folder, FINDINGS_FILE), finding)
         self.findings.append(finding)
         return finding
+
+    def log_event(self, event):
+        """Append one event of the timeline (a JSON-able dict), fsynced."""
+        _append_line(os.path.join(self.folder, TIMELINE_FILE), event)
+
+
+def _append_line(path, record):
+    line = json.dumps(record, sort_keys=True) + '\n'
+    if _ends_unterminated(path):      # a line cut short by a dead node: start a fresh line
+        line = '\n' + line
+    _fsync_write(path, line.encode(), mode='ab')
 
 
 def _ends_unterminated(path):
