@@ -150,5 +150,9 @@ def _progress(feedback):
 
 def main():
     rospy.init_node('inspection')
-    InspectionNode()
+    try:
+        InspectionNode()
+    except (store.RunError, OSError) as error:
+        rospy.logfatal('inspection: cannot go on with the run: %s (start a new run: new_run:=true)', error)
+        raise SystemExit(1)
     rospy.spin()
