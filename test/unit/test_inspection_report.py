@@ -1,7 +1,6 @@
 """The inspection report as a person sees it: opened in headless Chromium
 (Debian's ``chromium``), it shows every finding, the dig list in order and
 the map; bad runs get clear errors."""
-import io
 import os
 import re
 import shutil
@@ -16,8 +15,8 @@ import inspection_run
 
 CHROMIUM = shutil.which('chromium') or shutil.which('chromium-browser')
 BROWSER_S = 120     # a cold Chromium on a busy machine
-needs_chromium = pytest.mark.skipif(CHROMIUM is None, reason='headless Chromium (Debian package chromium, '
-                                                              'scripts/debian-packages.txt) is not installed')
+needs_chromium = pytest.mark.skipif(
+    CHROMIUM is None, reason='headless Chromium (Debian package chromium, scripts/debian-packages.txt) is not installed')
 #: The findings' marker colour on the map (report.map_svg).
 MARKER_RGB = (0xdd, 0x22, 0x22)
 

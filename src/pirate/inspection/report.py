@@ -22,7 +22,8 @@ LABEL_PX = 14           # labels of findings at one place are stacked this far a
 SAMPLE_M = 0.01
 STYLE = """body{font-family:sans-serif;margin:2em;max-width:1000px}
 table{border-collapse:collapse}td,th{border:1px solid #999;padding:4px 8px;text-align:left}
-.finding{border:1px solid #ccc;margin:1em 0;padding:0.5em 1em}.finding figure{display:inline-block;margin:4px}.finding img{width:320px;image-rendering:pixelated}
+.finding{border:1px solid #ccc;margin:1em 0;padding:0.5em 1em}
+.finding figure{display:inline-block;margin:4px}.finding img{width:320px;image-rendering:pixelated}
 .warn{color:#a60}"""
 
 
@@ -48,7 +49,8 @@ def _project(points):
     spans = [max(p[k] for p in points) - min(p[k] for p in points) for k in range(3)]
     a, b = sorted(sorted(range(3), key=lambda k: -spans[k])[:2])
     low_a, low_b = min(p[a] for p in points), min(p[b] for p in points)
-    scale = min((SVG_WIDTH - 2 * SVG_MARGIN) / max(spans[a], 1e-3), (SVG_HEIGHT - 2 * SVG_MARGIN) / max(spans[b], 1e-3))
+    scale = min((SVG_WIDTH - 2 * SVG_MARGIN) / max(spans[a], 1e-3),
+                (SVG_HEIGHT - 2 * SVG_MARGIN) / max(spans[b], 1e-3))
     height = spans[b] * scale + 2 * SVG_MARGIN
     return (lambda p: (SVG_MARGIN + (p[a] - low_a) * scale, height - SVG_MARGIN - (p[b] - low_b) * scale)), scale, height
 
