@@ -15,8 +15,8 @@ import inspection_run
 
 CHROMIUM = shutil.which('chromium') or shutil.which('chromium-browser')
 BROWSER_S = 120     # a cold Chromium on a busy machine
-needs_chromium = pytest.mark.skipif(
-    CHROMIUM is None, reason='headless Chromium (Debian package chromium, scripts/debian-packages.txt) is not installed')
+NO_CHROMIUM = 'headless Chromium is not installed (Debian package chromium, scripts/debian-packages.txt)'
+needs_chromium = pytest.mark.skipif(CHROMIUM is None, reason=NO_CHROMIUM)
 #: The findings' marker colour on the map (report.map_svg).
 MARKER_RGB = (0xdd, 0x22, 0x22)
 

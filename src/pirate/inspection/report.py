@@ -52,7 +52,10 @@ def _project(points):
     scale = min((SVG_WIDTH - 2 * SVG_MARGIN) / max(spans[a], 1e-3),
                 (SVG_HEIGHT - 2 * SVG_MARGIN) / max(spans[b], 1e-3))
     height = spans[b] * scale + 2 * SVG_MARGIN
-    return (lambda p: (SVG_MARGIN + (p[a] - low_a) * scale, height - SVG_MARGIN - (p[b] - low_b) * scale)), scale, height
+
+    def to_svg(point):
+        return SVG_MARGIN + (point[a] - low_a) * scale, height - SVG_MARGIN - (point[b] - low_b) * scale
+    return to_svg, scale, height
 
 
 def _along(network, from_m, to_m):
