@@ -13,7 +13,8 @@ the mission's goal (its map; the launch pit is the map's ``launch_pit``
 point, else the mission's first point), feedback and result (the run's
 timeline) and both cameras
 (``/pirate/front_camera/image_raw``, ``/pirate/rear_camera/image_raw``,
-sensor_msgs/Image; the latest frame of each is kept).
+sensor_msgs/Image; the latest frame of each is kept: the twin renders
+them while the recorder runs).
 
 Params (private): ``~root`` (runs folder, default
 ``~/.ros/pirate/inspections``), ``~run`` (run name; default ``current``:
@@ -75,8 +76,9 @@ class InspectionNode(object):
         rospy.Subscriber(names.MISSION_ACTION + '/result', MissionActionResult, self._locked(
             lambda msg: self.recorder.mission_result(rospy.get_time(), msg.result.status, msg.result.message)),
             queue_size=10)
-        for camera, topic in (('front', names.FRONT_CAMERA_TOPIC), ('rear', names.REAR_CAMERA_TOPIC)):
-            rospy.Subscriber(topic, Image, self._on_image, callback_args=camera, queue_size=1, buff_size=2 ** 24)
+        for camera in rec.CAMERAS:
+            rospy.Subscriber(names.CAMERA_NAMESPACES[camera] + '/image_raw', Image, self._on_image,
+                             callback_args=camera, queue_size=1, buff_size=2 ** 24)
         rospy.Service(names.INSPECTION_MARK_SERVICE, InspectionMark, self._on_mark)
         self._publish_findings()
         rospy.loginfo('inspection: run %s (%d findings so far)', self.folder, len(self.store.findings))
