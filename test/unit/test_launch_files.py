@@ -143,3 +143,13 @@ def test_start_joints_reach_the_firmware_in_the_loop_robot():
     assert dump.returncode == 0, dump.stderr
     assert '/fil_robot/joints/bend_iv: -0.3' in dump.stdout
 
+
+def test_the_cameras_are_recorded_to_their_own_bag_only_when_asked():
+    assert '/record_cameras' not in _launch('record.launch').stdout
+    command = subprocess.run(['roslaunch', '--args', '/record_cameras', os.path.join(LAUNCH_DIR, 'record.launch'),
+                              'cameras:=true', 'camera_bag:=/tmp/pirate_cameras_check.bag'],
+                             capture_output=True, text=True, timeout=60)
+    assert command.returncode == 0, command.stderr
+    for part in ('-O /tmp/pirate_cameras_check.bag', '/pirate/front_camera/image_raw', '/pirate/rear_camera/image_raw',
+                 '/pirate/inspection/findings'):
+        assert part in command.stdout, command.stdout
