@@ -78,6 +78,7 @@ class InspectionMarkTest(unittest.TestCase):
             f['note'] == 'hiss' and f['position']['along_mm'] == 2390.0 for f in self.findings['findings']))
         last = self.findings['findings'][-1]
         self.assertEqual(sorted(last['frames']), ['front', 'rear'])
+        self.assertEqual(last['source'], rospy.get_name())
         for name in last['frames'].values():
             self.assertGreater(os.path.getsize(os.path.join(self.findings['run'], name)), 0)
         refused = self.mark(kind='crack', note='')

@@ -128,7 +128,7 @@ class InspectionNode(object):
     def _on_mark(self, req):
         try:
             with self._lock:
-                finding = self.recorder.mark(req.kind, req.note, rospy.get_time(), 'service')
+                finding = self.recorder.mark(req.kind, req.note, rospy.get_time(), _caller(req))
         except (fd.FindingError, store.RunError, OSError) as refused:
             rospy.logwarn('inspection: finding not recorded: %s', refused)
             return InspectionMarkResponse(ok=False, message='not recorded: %s' % refused, number=0)
@@ -142,6 +142,11 @@ class InspectionNode(object):
     def _publish_findings(self):
         self._findings_pub.publish(String(data=json.dumps(
             {'run': self.folder, 'findings': self.store.findings}, sort_keys=True)))
+
+
+def _caller(req):
+    """The node that called the service (the panel's is the manager), for the finding's ``source``."""
+    return getattr(req, '_connection_header', {}).get('callerid', 'unknown')
 
 
 def _progress(feedback):
