@@ -81,7 +81,7 @@ class InspectionMarkTest(unittest.TestCase):
         self.assertEqual(last['source'], rospy.get_name())
         for name in last['frames'].values():
             self.assertGreater(os.path.getsize(os.path.join(self.findings['run'], name)), 0)
-        refused = self.mark(kind='crack', note='')
+        refused = self.mark(kind='hole', note='')
         self.assertFalse(refused.ok)
         self.assertIn('not one of', refused.message)
 

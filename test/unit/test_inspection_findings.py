@@ -65,7 +65,7 @@ def test_a_finding_off_the_map_is_refused(pipe_map):
 def test_an_unknown_kind_is_refused_with_the_known_ones():
     assert fd.check_kind(' Leak ') == 'leak' and fd.check_kind('') == 'other'
     with pytest.raises(fd.FindingError, match='displaced_joint'):
-        fd.check_kind('crack')
+        fd.check_kind('hole')
 
 
 def test_the_dig_list_is_sorted_from_the_launch_pit(pipe_map):

@@ -81,7 +81,7 @@ def test_no_map_and_a_bad_kind_are_refused_and_nothing_is_written(tmp_path):
     with pytest.raises(fd.FindingError, match='no map'):
         recorder.mark('leak', '', 0.0, 'service')
     with pytest.raises(fd.FindingError, match='not one of'):
-        _recorder(str(tmp_path)).mark('crack', '', 0.0, 'service')
+        _recorder(str(tmp_path)).mark('hole', '', 0.0, 'service')
     assert store.read_findings(str(tmp_path), missing_ok=True)[0] == []
 
 

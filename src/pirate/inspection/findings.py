@@ -14,8 +14,10 @@ as seen looking that way: 12 at the top of the pipe, 3 on the right.
 import math
 
 from pirate.supervisory import planner
+from pirate.world import network
 
-KINDS = ('leak', 'corrosion', 'deposit', 'water', 'displaced_joint', 'intruding_branch', 'other')
+#: What a finding may be: what the world format's defects are, or other.
+KINDS = tuple(network.DEFECT_KEYS) + ('other',)
 #: The robot's roll when upright (Fig 4.7: pi/2 upright, 0 lying on its right side).
 UPRIGHT_RAD = math.pi / 2
 #: A camera within this angle of the pipe's axis sees the whole ring ahead: no clock position.
