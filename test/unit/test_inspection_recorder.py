@@ -119,3 +119,15 @@ def test_the_missions_heard_make_the_runs_timeline(tmp_path):
         texts = [json.loads(line)['text'] for line in stream]
     assert texts == ['mission sent: inspection_network_90, launch_pit -> target', 'step 1/9: DRIVE, running',
                      'step 2/9: DRIVE, waiting for resume', 'mission succeeded: 9 PABs']
+
+
+def test_a_mark_keeps_the_place_it_was_asked_at_and_no_frame_of_the_last_mark(tmp_path):
+    recorder = _recorder(str(tmp_path))
+    recorder.robot_state(JOINTS, [0.0, 0.0], math.pi / 2, 0.0)
+    recorder.frame('front', _frame((1, 2, 3)))
+    recorder.mark('other', 'first', 1.0, 'panel')
+    asked = recorder.where()
+    recorder.robot_state(JOINTS, [0.0, 0.0], math.pi / 2, 200.0)      # moved while the frames came
+    recorder.forget_frames()
+    finding = recorder.mark('other', 'second', 2.0, 'panel', where=asked)
+    assert finding['position']['from_launch_pit_mm'] == pytest.approx(0.0) and finding['frames'] == {}

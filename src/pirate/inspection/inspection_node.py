@@ -11,10 +11,10 @@ Hears: ``/pirate/state`` (camera pan/tilt, roll, odometry), the mission's
 estimate (``/pirate/mission/along_mm``, ``/pirate/mission/uncertainty_mm``),
 the mission's goal (its map; the launch pit is the map's ``launch_pit``
 point, else the mission's first point), feedback and result (the run's
-timeline) and both cameras
+timeline). At each mark it takes the next frame of each camera
 (``/pirate/front_camera/image_raw``, ``/pirate/rear_camera/image_raw``,
-sensor_msgs/Image; the latest frame of each is kept: the twin renders
-them while the recorder runs).
+sensor_msgs/Image), subscribing only then: the twin renders a camera only
+while someone subscribes, and rendering costs its real-time factor.
 
 Params (private): ``~root`` (runs folder, default
 ``~/.ros/pirate/inspections``), ``~run`` (run name; default ``current``:
@@ -44,6 +44,8 @@ from pirate.world import network
 LAUNCH_PIT = 'launch_pit'
 #: ``~run``: go on with the run the last recorder started; ``~map``: none until a mission names one.
 CURRENT, NO_MAP = 'current', 'none'
+#: Wall s a mark waits for each camera's next frame (the twin starts rendering when asked).
+FRAME_WAIT_S = 3.0
 
 
 class InspectionNode(object):
@@ -76,9 +78,6 @@ class InspectionNode(object):
         rospy.Subscriber(names.MISSION_ACTION + '/result', MissionActionResult, self._locked(
             lambda msg: self.recorder.mission_result(rospy.get_time(), msg.result.status, msg.result.message)),
             queue_size=10)
-        for camera in rec.CAMERAS:
-            rospy.Subscriber(names.CAMERA_NAMESPACES[camera] + '/image_raw', Image, self._on_image,
-                             callback_args=camera, queue_size=1, buff_size=2 ** 24)
         rospy.Service(names.INSPECTION_MARK_SERVICE, InspectionMark, self._on_mark)
         self._publish_findings()
         rospy.loginfo('inspection: run %s (%d findings so far)', self.folder, len(self.store.findings))
@@ -120,15 +119,17 @@ class InspectionNode(object):
             with self._lock:
                 self.recorder.robot_state(msg.name, msg.position, msg.orientation, msg.odometry)
 
-    def _on_image(self, msg, camera):
-        frame = rec.Frame(msg.width, msg.height, msg.encoding, msg.step, msg.data, msg.header.stamp.to_sec())
-        with self._lock:
-            self.recorder.frame(camera, frame)
-
     def _on_mark(self, req):
+        stamp_s = rospy.get_time()
         try:
             with self._lock:
-                finding = self.recorder.mark(req.kind, req.note, rospy.get_time(), _caller(req))
+                where = self.recorder.where()          # where the robot is when marked, before the frames come
+            frames = _next_frames()
+            with self._lock:
+                self.recorder.forget_frames()
+                for camera, frame in frames.items():
+                    self.recorder.frame(camera, frame)
+                finding = self.recorder.mark(req.kind, req.note, stamp_s, _caller(req), where=where)
         except (fd.FindingError, store.RunError, OSError) as refused:
             rospy.logwarn('inspection: finding not recorded: %s', refused)
             return InspectionMarkResponse(ok=False, message='not recorded: %s' % refused, number=0)
@@ -142,6 +143,26 @@ class InspectionNode(object):
     def _publish_findings(self):
         self._findings_pub.publish(String(data=json.dumps(
             {'run': self.folder, 'findings': self.store.findings}, sort_keys=True)))
+
+
+def _next_frames():
+    """{camera: :data:`rec.Frame`} of the next image of each camera that
+    sends one within :data:`FRAME_WAIT_S` (the cameras asked at once)."""
+    frames = {}
+
+    def grab(camera):
+        try:
+            msg = rospy.wait_for_message(names.CAMERA_NAMESPACES[camera] + '/image_raw', Image, FRAME_WAIT_S)
+        except rospy.ROSException:
+            return
+        frames[camera] = rec.Frame(msg.width, msg.height, msg.encoding, msg.step, msg.data,
+                                   msg.header.stamp.to_sec())
+    threads = [threading.Thread(target=grab, args=(camera,)) for camera in rec.CAMERAS]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    return frames
 
 
 def _caller(req):

@@ -96,6 +96,10 @@ class Recorder(object):
         """The latest :data:`Frame` of ``camera`` (one of :data:`CAMERAS`)."""
         self.frames[camera] = frame
 
+    def forget_frames(self):
+        """No camera has a frame until the next :meth:`frame` (a mark keeps none of the last one's)."""
+        self.frames = {}
+
     # --- the mark -------------------------------------------------------------
     def where(self):
         """(m along the map, m uncertain) now, from the anchor and the odometry since."""
@@ -106,12 +110,13 @@ class Recorder(object):
             travelled_m = (self.odometry_mm - self.anchor.odometry_mm) / 1000.0
         return self.anchor.along_m + travelled_m, self.anchor.uncertainty_m + self._drift * abs(travelled_m)
 
-    def mark(self, kind, note, stamp_s, source, now=None):
-        """Record a finding now (``stamp_s``: robot time, s; ``source``: who
-        marked it); the finding as stored. :class:`fd.FindingError` when it
-        cannot be placed."""
+    def mark(self, kind, note, stamp_s, source, now=None, where=None):
+        """Record a finding (``stamp_s``: robot time, s; ``source``: who
+        marked it; ``where``: :meth:`where` when it was marked, default now);
+        the finding as stored. :class:`fd.FindingError` when it cannot be
+        placed."""
         kind = fd.check_kind(kind)
-        along_m, uncertainty_m = self.where()
+        along_m, uncertainty_m = where or self.where()
         position = fd.position_on_map(self.pipe_map, along_m, self.launch_m, uncertainty_m,
                                       self.joints.get('camera_pan', 0.0), self.joints.get('camera_tilt', 0.0),
                                       self.roll)
