@@ -52,7 +52,7 @@ def test_every_argument_has_a_doc_and_a_working_default(path):
     assert listed.returncode == 0 and 'Required' not in listed.stdout, listed.stdout + listed.stderr
 
 
-ENTRIES = ('sim.launch', 'Manager.launch', 'demo.launch', 'robot.launch')
+ENTRIES = ('sim.launch', 'Manager.launch', 'demo.launch', 'robot.launch', 'operator.launch')
 
 
 @pytest.mark.parametrize('entry', ENTRIES)
@@ -80,6 +80,12 @@ BAD_ARGS = [   # entry, argument, words of the error
     ('robot.launch', 'orientation:=up', 'a number of rad'),
     ('demo.launch', 'joints:=front_tilt 0.4', 'a YAML dict of joint: rad is needed'),
     ('Manager.launch', 'panel:=keyboard', 'use virtual, midi or none'),
+    ('operator.launch', 'rate:=abc', 'rate:=abc: a real-time factor above 0'),
+    ('operator.launch', 'world:=netwrk_90', 'the worlds there are: bend_down_90'),
+    ('operator.launch', 'world:=straight_110', 'give pipe_diameter:=110'),
+    ('operator.launch', 'robot:=fil', 'robot:=fil: use sim or real'),
+    ('operator.launch', 'panel:=keyboard', 'panel:=keyboard: use virtual or midi or none'),
+    ('operator.launch', 'rviz:=maybe', 'rviz:=maybe: true or false'),
 ]
 
 
@@ -153,3 +159,52 @@ def test_the_cameras_are_recorded_to_their_own_bag_only_when_asked():
     for part in ('-O /tmp/pirate_cameras_check.bag', '/pirate/front_camera/image_raw', '/pirate/rear_camera/image_raw',
                  '/pirate/inspection/findings'):
         assert part in command.stdout, command.stdout
+# --- the operator launch ------------------------------------------------------
+
+@pytest.mark.parametrize('args,present,absent', [
+    (['world:=inspection_network_90'],
+     ['/sim_robot', '/pirate_state', '/pirate_manager', '/mission_executive', '/virtual_panel', '/rviz_world'],
+     ['/serial_node', '/midi_input']),
+    (['robot:=real', 'panel:=midi', 'use_sim_time:=false'],
+     ['/serial_node', '/pirate_manager', '/mission_executive', '/midi_input', '/midi_output', '/rviz'],
+     ['/sim_robot', '/virtual_panel']),
+    (['panel:=none', 'rviz:=false'], ['/pirate_manager', '/mission_executive'], ['/virtual_panel', '/rviz_world']),
+])
+def test_operator_launch_starts_the_whole_stack(args, present, absent):
+    nodes = _launch('operator.launch', *args)
+    assert nodes.returncode == 0, nodes.stderr
+    for node in present:
+        assert node in nodes.stdout, node
+    for node in absent:
+        assert node not in nodes.stdout, node
+
+
+def test_operator_launch_composes_the_panel_in_the_manager_and_sends_the_world():
+    dump = subprocess.run(['roslaunch', '--dump-params', os.path.join(LAUNCH_DIR, 'operator.launch'),
+                           'world:=inspection_network_90'], capture_output=True, text=True, timeout=60)
+    assert dump.returncode == 0, dump.stderr
+    assert '/pirate_manager/panel: true' in dump.stdout
+    assert '/sim_robot/world: inspection_network_90' in dump.stdout
+    assert '/use_sim_time: true' in dump.stdout
+
+
+def test_a_launch_without_a_panel_says_so():
+    nodes = _launch('operator.launch', 'panel:=none')
+    assert nodes.returncode == 0
+    assert 'no operator panel (panel:=none)' in nodes.stderr
+
+
+def test_sim_launch_puts_the_robot_in_the_world_asked():
+    dump = subprocess.run(['roslaunch', '--dump-params', os.path.join(LAUNCH_DIR, 'sim.launch'),
+                           'world:=network_90', 'headless:=true'], capture_output=True, text=True, timeout=60)
+    assert dump.returncode == 0, dump.stderr
+    assert '/sim_robot/world: network_90' in dump.stdout
+
+
+@pytest.mark.parametrize('entry', ['operator.launch', 'sim.launch', 'Manager.launch', 'demo.launch'])
+def test_the_managers_death_leaves_the_stack_running(entry):
+    """Ctrl-C or a crash of pirate_manager: it is started again, nothing else ends."""
+    from roslaunch.config import load_config_default
+    config = load_config_default([os.path.join(LAUNCH_DIR, entry)], None, verbose=False)
+    manager = [n for n in config.nodes if n.name == 'pirate_manager']
+    assert manager and manager[0].respawn and not manager[0].required

@@ -42,6 +42,7 @@ ALLOWED = {
     'docs': {'robot', 'state', 'sequencer', 'supervisory', 'world', 'panel', 'link', 'sim', 'viz', 'camera'},
     'sweep': {'world'},   # the runner of the twin benches; a bench's cases load it
     'inspection': {'robot', 'state', 'world', 'supervisory'},   # findings placed on the map, the report
+    'launch_check': {'world'},   # operator.launch's arguments: the worlds there are
     'testing': {'robot', 'state', 'sequencer', 'supervisory', 'world', 'panel', 'link', 'sim', 'viz',
                 'manager', 'camera'},
 }
