@@ -236,3 +236,15 @@ def test_an_unclamp_blocked_after_a_turn_stopped_steering_in_names_the_way_on():
 @pytest.mark.parametrize('after_state, moved_mm', [('clamping rear', 0.0), (junction.STEERING_FRONT, 50.0)])
 def test_no_steering_hint_after_another_goal_or_once_moved(after_state, moved_mm):
     assert steering_hint(36.5, 110, after_state, moved_mm) == ''
+
+
+def test_home_left_lifted_in_a_straight_pipe_names_what_it_senses_not_a_junction():
+    """A mitre bend stopped in a straight pipe left Bend I past the straight
+    pipe's bound: Home says what Bend I reads, and claims no junction."""
+    view = RobotView(dict(zip(JOINTS, (0.38, 0.72, 0.40, 0.00, 0.41, -0.80))), 1.57, 0.0, 0.0, 1.0, {})
+    ctx = types.SimpleNamespace(feed=types.SimpleNamespace(latest=lambda: view), guards=BOOK.for_diameter(90),
+                                prims=types.SimpleNamespace(executed=[1, 2, 3]))
+    said = Home().summary(ctx)
+    assert 'front module left lifted at 0.38 rad' in said
+    assert 'Bend I senses +0.72 rad, past the 0.55 rad a straight 90 mm pipe allows' in said
+    assert 'junction' not in said

@@ -82,11 +82,23 @@ def test_unknown_pab_code(rig):
         assert name in reason           # the message lists what is known
 
 
-@pytest.mark.parametrize('option', [0, 3, 7])
-def test_clamp_sideways_without_a_side(rig, option):
+def test_clamp_sideways_without_a_side(rig):
     server, feed, _, _, _ = rig
     feed.push(state())
-    refused(server, Goal(CLAMP_SIDEWAYS, option=option), 'CLAMP_SIDEWAYS', 'side', 'LEFT', 'RIGHT')
+    refused(server, Goal(CLAMP_SIDEWAYS, option=0), 'CLAMP_SIDEWAYS', 'side', 'LEFT', 'RIGHT')
+
+
+@pytest.mark.parametrize('name,option,words', [
+    (CLAMP_STRAIGHT, 5, ('CLAMP_STRAIGHT takes option 0 NONE', 'not 5 DOWN')),
+    (CLAMP_SIDEWAYS, 3, ('CLAMP_SIDEWAYS takes option 1 LEFT or 2 RIGHT', 'not 3 STRAIGHT')),
+    (CLAMP_SIDEWAYS, 7, ('1 LEFT or 2 RIGHT', '7 (no option of Pirate.action)')),
+    (DRIVE, 1, ('DRIVE takes option 0 NONE', 'not 1 LEFT')),
+    (HOME, 4, ('HOME takes option 0 NONE', 'not 4 UP')),
+])
+def test_an_option_the_pab_does_not_take_is_refused_with_those_it_takes(rig, name, option, words):
+    server, feed, _, _, _ = rig
+    feed.push(state())
+    refused(server, Goal(name, option=option), *words)
 
 
 def test_clamp_sideways_non_nominal_in_110_mm_is_accepted(rig):

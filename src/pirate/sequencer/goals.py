@@ -17,6 +17,8 @@ OPTIONS = {name: code for code, name in OPTION_NAMES.items()}
 #: The options each PAB needs (one of them); the others take none.
 PAB_OPTIONS = {'CLAMP_SIDEWAYS': ('LEFT', 'RIGHT'), 'T_JOINT': ('LEFT', 'RIGHT', 'STRAIGHT'),
                'MITRE_BEND': ('LEFT', 'RIGHT', 'UP', 'DOWN')}
+#: The option a PAB that takes none is sent with.
+NO_OPTION = 'NONE'
 #: Goal fields a PAB takes besides its pipe diameter and option.
 PAB_FIELDS = {'DRIVE': ('distance', 'speed')}
 
@@ -46,3 +48,19 @@ def start_clamps(pab, option, guards=None):
     if straight_sideways_problem(guards, float('inf')):
         return tuple(clamp for clamp in clamps if clamp == label(STRAIGHT_CLAMP))
     return clamps
+
+
+def option_refusal(name, option):
+    """Why PAB code ``name`` does not take option code ``option`` (codes of
+    Pirate.action), naming the options it takes; None when it takes it (or
+    needs one and got none: the PAB itself says which), and for a code that
+    is no PAB of Pirate.action."""
+    if name not in CODE_NAMES:
+        return None
+    pab = CODE_NAMES[name]
+    takes = PAB_OPTIONS.get(pab, (NO_OPTION,))
+    if option in OPTION_NAMES and (OPTION_NAMES[option] in takes or OPTION_NAMES[option] == NO_OPTION):
+        return None
+    given = ('%d %s' % (option, OPTION_NAMES[option]) if option in OPTION_NAMES
+             else '%d (no option of Pirate.action)' % option)
+    return '%s takes option %s, not %s' % (pab, ' or '.join('%d %s' % (OPTIONS[o], o) for o in takes), given)

@@ -34,7 +34,7 @@ import traceback
 
 from pirate.state import feed as feeds
 from pirate.robot import safety
-from pirate.sequencer import clamp_state, tuning
+from pirate.sequencer import clamp_state, goals, tuning
 from pirate.sequencer.guards import NoGuards
 from pirate.sequencer.pabs import PABS
 from pirate.sequencer.pabs.base import Ended, PabFailed
@@ -159,6 +159,9 @@ class PirateServer(object):
         name, pab_class = PABS[goal.name]
         if pab_class is None:
             return 'PAB %s is not implemented yet' % name
+        refusal = goals.option_refusal(goal.name, goal.option)
+        if refusal:
+            return refusal
         try:
             guards = self.book.for_diameter(goal.pipe_diameter)
         except NoGuards as missing:

@@ -123,13 +123,20 @@ class Home(Pab):
         angles = view.angles
         if angles['front_tilt'] <= ctx.guards.move(DOWN_ROW).guard:     # lowered (the ALONG path)
             return 'unclamped and lying in the pipe, %d motion primitives' % count
-        if half_round.stopped_steering(view, ctx.guards, self.after):
-            why = 'the last goal, %s, stopped steering it into an opening here' % self.after.pab
-        else:
-            why = 'Bend I at %+.2f rad (a straight %d mm pipe allows %.2f) points it into an opening' % (
-                angles['bend_i'], ctx.guards.pipe_diameter, _bend_i_max(ctx))
-        return ('unclamped, the front module left lifted at %.2f rad: %s, where lowering it pries the robot against '
-                'the junction; %d motion primitives' % (angles['front_tilt'], why, count))
+        return ('unclamped, the front module left lifted at %.2f rad and not lowered: %s; %d motion primitives'
+                % (angles['front_tilt'], _why_left_lifted(ctx, view, self.after), count))
+
+
+def _why_left_lifted(ctx, view, after):
+    """What the robot senses that kept Home from lowering the front: the last
+    goal stopped steering into an opening here, or Bend I past what a
+    straight pipe allows (the bend reads the wall of a pipe it points into;
+    whether there is a junction it cannot tell)."""
+    if half_round.stopped_steering(view, ctx.guards, after):
+        return 'the last goal, %s, stopped steering it into an opening here' % after.pab
+    return ('Bend I senses %+.2f rad, past the %.2f rad a straight %d mm pipe allows: lowered, the front would be '
+            'pressed against the wall Bend I leans on' % (view.angles['bend_i'], _bend_i_max(ctx),
+                                                          ctx.guards.pipe_diameter))
 
 
 def _corner_hint(ctx, after):
