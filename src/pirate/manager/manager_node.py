@@ -33,6 +33,7 @@ from pirate.robot.writers import OneWriter
 from pirate.state.assembler import pab_blocker
 from pirate.state.feed import RobotFeed, RobotView
 from pirate.state.clock_ros import silence_clock
+from pirate.panel import manual_guard
 from pirate.panel.mapper_ros import MapperRos
 from pirate.sequencer.guards import BadConfig, GuardBook
 from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, PirateGoal,
@@ -161,6 +162,7 @@ class PirateManager(object):
             rospy.Subscriber(topic, kind, self._on_command, topic, queue_size=10)
         rospy.Timer(rospy.Duration(0.1), self._tick)
         self.panel = self._compose_panel()
+        self._manual_guard = manual_guard.ManualGuard(manual_guard.settings(book.common))
         self._reconfigure = self._tunables()
         threading.Thread(target=self._worker, name='pab_worker', daemon=True).start()
         self._action.start()
@@ -248,9 +250,19 @@ class PirateManager(object):
     def _tick(self, _event):
         if self._closing.is_set():
             return      # shutting down: the safe hold is the last array sent
+        self._guard_manual()
         self.setpoint.tick()
         self.limit.tick()
         self._publish_progress()
+
+    def _guard_manual(self):
+        """Stop a motor the panel drives without progress (pirate.panel.manual_guard), on robot time."""
+        view = self.feed.latest()
+        if self.panel is None or view is None or not self.feed.fresh() or view.part_odometry is None:
+            return
+        driven = self.panel.mapper.manually_driven()
+        for motor, why in self._manual_guard.update(view.stamp, driven, view.angles, view.part_odometry):
+            self.panel.mapper.stop_stalled(motor, why)
 
     def _start_robot(self):
         """A goal is a request to move: PLAY and start the 10 Hz arrays."""

@@ -44,7 +44,7 @@ import threading
 from pirate.robot import commands, safety, tables
 from pirate.robot.hold import safe_hold
 from pirate.panel import config as panel_config
-from pirate.panel import mission_buttons
+from pirate.panel import manual_guard, mission_buttons
 from pirate.panel.config import MANUAL, PAB
 
 #: The control-array index where play / stop / no-limits-all travel (SPEC 3).
@@ -213,6 +213,25 @@ class Mapper(object):
         index = tables.element(entry.target).index
         self._control.set_code(index, safety.COMMAND_CODES['single_stop'])
         self._log('%s stopped (its S button selects a control mode again)' % entry.target)
+
+    def manually_driven(self):
+        """The motors the panel drives now in manual mode (pirate.panel.manual_guard):
+        the wheels with a non-zero setpoint, a PWM joint with a non-zero setpoint;
+        none while stopped, in PAB mode or while a PAB runs (its guards watch it)."""
+        with self._lock:
+            if not self.playing or self.operation_mode != MANUAL or self._pab.is_active():
+                return []
+            driven = [name for name in manual_guard.PWM_JOINTS
+                      if self._control.mode_of(name) == 'pwm' and self._setpoint.get(name) != 0]
+            if self._setpoint.get(manual_guard.WHEELS) != 0:
+                driven.append(manual_guard.WHEELS)
+            return driven
+
+    def stop_stalled(self, motor, why):
+        """Stop ``motor``, which the manual guard found driven without progress, and say why."""
+        with self._lock:
+            self._setpoint.set(motor, 0)     # the manager's next 10 Hz tick sends it
+            self._log(why)
 
     def _on_play(self, entry, value):
         self.playing = True
