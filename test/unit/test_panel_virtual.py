@@ -201,3 +201,28 @@ def test_in_pab_mode_the_m_row_reads_its_mission_jobs(panel):
         'M', 'confirm', 'pause', 'resume', 'full', 'lvl conf', 'manual', 'M']
     assert _label_pixels(panel, 50) != manual                    # drawn, not only named
     assert [panel.label(panel.control(c)) for c in (32, 64)] == ['S', 'R']
+
+
+def test_long_status_lines_are_wrapped_to_the_window_not_clipped(panel):
+    panel.mission_text = ('inspection_network_90 launch_pit -> target: step 5/9 MITRE_BEND RIGHT at 1885 mm, level '
+                          'confirm, about 212 s left, WAITING for confirmation of step 5 (MITRE_BEND RIGHT)')
+    panel.draw(pygame.Surface((virtual.WIDTH, virtual.HEIGHT)))
+    lines = panel.wrapped_status()
+    assert all(panel._font.size(line)[0] <= virtual.WIDTH - 28 for line in lines)   # pylint: disable=protected-access
+    assert 'WAITING for confirmation of step 5 (MITRE_BEND RIGHT)' in ' '.join(lines)
+
+
+def test_manual_mode_labels_what_each_slider_and_knob_moves(panel):
+    panel.manual_labels = {7: 'wheels', 17: 'limit Bend IV'}
+    surface = pygame.Surface((virtual.WIDTH, virtual.HEIGHT))
+    panel.draw(surface)
+    rect = panel.control(7).rect
+    under = pygame.Rect(rect.centerx - 25, rect.bottom + 18, 50, 12)
+    labelled = {tuple(surface.get_at((x, y)))[:3] for x in range(under.left, under.right)
+                for y in range(under.top, under.bottom)}
+    assert labelled != {virtual.BODY}
+    panel.set_led(virtual.OPERATION_MODE_BUTTON, True)          # PAB mode: no manual labels
+    panel.draw(surface)
+    plain = {tuple(surface.get_at((x, y)))[:3] for x in range(under.left, under.right)
+             for y in range(under.top, under.bottom)}
+    assert plain == {virtual.BODY}

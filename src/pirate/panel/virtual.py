@@ -22,6 +22,8 @@ import os
 os.environ.setdefault('PYGAME_HIDE_SUPPORT_PROMPT', '1')
 import pygame  # noqa: E402
 
+from pirate.panel.status import wrap  # noqa: E402
+
 STRIPS = 8
 SLIDER_BASE, KNOB_BASE, S_BASE, M_BASE, R_BASE = 0, 16, 32, 48, 64
 MIDI_MAX = 127
@@ -40,8 +42,10 @@ STRIP_KEYS = {pygame.K_s: S_BASE, pygame.K_m: M_BASE, pygame.K_r: R_BASE}
 #: Channel of the operation-mode button: its LED on means PAB mode (SPEC 5).
 OPERATION_MODE_BUTTON, PLAY_BUTTON = 43, 41
 
-WIDTH, HEIGHT = 940, 358
-STATUS_H = 82     # four status lines: mode, PAB, the panel's word, the mission
+#: Status lines: mode, PAB, the panel's word, the mission, the robot, each wrapped to the window.
+STATUS_LINES, STATUS_LINE_H = 7, 18
+STATUS_H = 10 + STATUS_LINES * STATUS_LINE_H
+WIDTH, HEIGHT = 940, STATUS_H + 292     # the controls, and the manual labels under the sliders
 BODY, PANEL_EDGE, TEXT = (38, 38, 42), (90, 90, 96), (225, 225, 225)
 BUTTON_OFF, BUTTON_LIT, SLOT, THUMB = (70, 70, 76), (235, 40, 40), (15, 15, 15), (200, 200, 205)
 KNOB, KNOB_MARK = (120, 120, 128), (250, 250, 250)
@@ -87,6 +91,8 @@ class VirtualPanel(object):
         self.mission_text = ''      # the mission executive's step, level and what it waits for
         self.pab_list = []          # one line per PAB button (pirate.panel.config.pab_buttons)
         self.mission_labels = {}    # channel -> its PAB-mode (mission) label (mission_buttons.labels)
+        self.manual_labels = {}     # channel -> what a slider or knob moves in manual mode (status.control_labels)
+        self.robot_text = ''        # joints, odometry, distance along the pipe, LEDs (status.robot_line)
         self._dragging = None
         self._held = None
         self._font = None
@@ -184,7 +190,13 @@ class VirtualPanel(object):
         return ['Operation mode: %s   (%s)   strip %d selected'
                 % (self.operation_mode, run, self.selected + 1), self.pab_text,
                 'Panel: %s' % self.operator_text if self.operator_text else '',
-                'Mission: %s' % self.mission_text if self.mission_text else '']
+                'Mission: %s' % self.mission_text if self.mission_text else '',
+                self.robot_text]
+
+    def wrapped_status(self):
+        """The status lines wrapped to the window (nothing clipped at its edge), at most STATUS_LINES."""
+        lines = [part for line in self.status_lines() if line for part in wrap(line, self._fits_status)]
+        return lines[:STATUS_LINES]
 
     def draw(self, surface):
         """Draw the whole panel on ``surface`` (WIDTH x HEIGHT)."""
@@ -194,11 +206,28 @@ class VirtualPanel(object):
         surface.fill(BODY)
         pygame.draw.rect(surface, PANEL_EDGE, surface.get_rect(), 3)
         pygame.draw.line(surface, PANEL_EDGE, (0, STATUS_H), (WIDTH, STATUS_H), 2)
-        for i, line in enumerate(self.status_lines()):
-            surface.blit(self._font.render(line, True, TEXT), (14, 8 + i * 18))
+        self._draw_status(surface)
         for control in self.controls:
             getattr(self, '_draw_' + control.kind)(surface, control)
         self._draw_pab_list(surface)
+        self._draw_manual_labels(surface)
+
+    def _fits_status(self, text):
+        return self._font.size(text)[0] <= WIDTH - 28
+
+    def _draw_status(self, surface):
+        for i, line in enumerate(self.wrapped_status()):
+            surface.blit(self._font.render(line, True, TEXT), (14, 8 + i * STATUS_LINE_H))
+
+    def _draw_manual_labels(self, surface):
+        """In manual mode, what each slider and knob moves (the panel map's words), under it."""
+        if self.operation_mode != 'MANUAL':
+            return
+        for control in self.controls:
+            if control.channel in self.manual_labels and control.kind in ('slider', 'knob'):
+                below = control.rect.bottom + (24 if control.kind == 'slider' else 7)
+                image = self._small_font.render(self.manual_labels[control.channel], True, TEXT)
+                surface.blit(image, image.get_rect(center=(control.rect.centerx, below)))
 
     def _draw_pab_list(self, surface):
         """The PAB buttons, in two columns under the transport buttons."""

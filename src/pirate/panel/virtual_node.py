@@ -8,7 +8,14 @@ Pirate Server's action feedback and result (``/pirate/feedback``,
 the panel's messages to the operator (refusals, results) from
 ``names.OPERATOR_TOPIC``, and the running mission (its map and route from
 its goal; step k of n, autonomy level, what it waits for, how it ended)
-from the mission executive's action goal, feedback and result. In PAB mode
+from the mission executive's action goal, feedback and result, kept true
+by pirate.panel.status (the server's own state from
+``names.SERVER_STATUS_SERVICE`` after every outcome and once a second; a
+late feedback never overwrites a result; nothing stale after a manager
+restart), and the robot (joints, odometry, the mission's distance along the
+pipe, the LEDs) from ``names.ROBOT_STATE_TOPIC``, ``names.SETPOINT_TOPIC``
+and ``names.MISSION_ALONG_TOPIC``. In manual mode every slider and knob
+reads what it moves (the panel map's words). In PAB mode
 the M row reads its mission jobs (the panel map's ``mission_buttons``).
 
 Private params: ``~fps`` (redraw rate, default 30), ``~screenshot`` (path:
@@ -24,12 +31,17 @@ import rospy
 
 from pirate import names, paths
 from pirate.msg import (MidiInput, MidiOutput, MissionActionFeedback, MissionActionGoal, MissionActionResult,
-                        PirateActionFeedback, PirateActionResult)
-from std_msgs.msg import String
-from pirate.panel import config, mission_buttons, virtual
+                        PirateActionFeedback, PirateActionResult, RobotState, SetpointArray)
+from pirate.srv import ServerStatus
+from std_msgs.msg import Float64, String
+
+from pirate.panel import config, mission_buttons, status, virtual
+from pirate.robot import tables
 
 #: The panel map whose PAB buttons the panel lists (the launch's panel_config default).
 PANEL_CONFIG = os.path.join(paths.CONFIG_DIR, 'nanokontrol2.yaml')
+#: Wall s between two asks of the server's state (and its wait for an answer).
+SERVER_ASK_S = 1.0
 #: actionlib_msgs/GoalStatus codes -> words for the operator.
 _TERMINAL = {2: 'preempted', 3: 'succeeded', 4: 'aborted', 5: 'rejected', 8: 'recalled'}
 
@@ -42,7 +54,12 @@ class VirtualPanelNode(object):
         panel_map = config.load(rospy.get_param('~panel_config', PANEL_CONFIG))
         self.panel.pab_list = config.pab_buttons(panel_map)
         self.panel.mission_labels = mission_buttons.labels(panel_map.mission_buttons)
+        self.panel.manual_labels = status.control_labels(panel_map)
+        self.status = status.PanelStatus()
         self._mission = ''          # the running mission's map and route (from its goal)
+        self._along_mm = None       # the mission's estimate along the pipe
+        self._leds = {}             # 'front' / 'rear' LED setpoint counts
+        self._asked = threading.Event()
         self._lock = threading.Lock()
         self._pub = rospy.Publisher(names.MIDI_INPUT_TOPIC, MidiInput, queue_size=200)
         rospy.Subscriber(names.MIDI_OUTPUT_TOPIC, MidiOutput, self._on_led, queue_size=200)
@@ -56,6 +73,10 @@ class VirtualPanelNode(object):
                          self._on_mission, queue_size=10)
         rospy.Subscriber(names.MISSION_ACTION + '/result', MissionActionResult,
                          self._on_mission_result, queue_size=10)
+        rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state, queue_size=1)
+        rospy.Subscriber(names.SETPOINT_TOPIC, SetpointArray, self._on_setpoints, queue_size=1)
+        rospy.Subscriber(names.MISSION_ALONG_TOPIC, Float64, self._on_along, queue_size=1)
+        threading.Thread(target=self._ask_server, name='server_status', daemon=True).start()
         self._fps = float(rospy.get_param('~fps', 30.0))
         self._screenshot = rospy.get_param('~screenshot', '')
 
@@ -65,7 +86,8 @@ class VirtualPanelNode(object):
 
     def _on_feedback(self, msg):
         with self._lock:
-            self.panel.pab_text = feedback_text(msg.feedback)
+            self.status.feedback(msg.status.goal_id.id, feedback_text(msg.feedback))
+            self._show()
 
     def _on_operator(self, msg):
         with self._lock:
@@ -77,16 +99,53 @@ class VirtualPanelNode(object):
 
     def _on_mission(self, msg):
         with self._lock:
-            self.panel.mission_text = mission_text(msg.feedback, self._mission)
+            self.status.mission_line(mission_text(msg.feedback, self._mission))
+            self._show()
 
     def _on_mission_result(self, msg):
         with self._lock:
-            self.panel.mission_text = '%s: %s' % (msg.result.status or 'ended', msg.result.message)
+            self.status.mission_line('%s: %s' % (msg.result.status or 'ended', msg.result.message))
+            self._show()
 
     def _on_result(self, msg):
         outcome = _TERMINAL.get(msg.status.status, 'ended')
         with self._lock:
-            self.panel.pab_text = 'PAB %s: %s' % (outcome, msg.result.message)
+            self.status.result(msg.status.goal_id.id, 'PAB %s: %s' % (outcome, msg.result.message))
+            self._show()
+        self._asked.set()       # the server's own state, now
+
+    def _on_state(self, msg):
+        with self._lock:
+            self.panel.robot_text = status.robot_line(dict(zip(msg.name, msg.position)), msg.odometry,
+                                                      self._along_mm, self._leds)
+
+    def _on_setpoints(self, msg):
+        with self._lock:
+            self._leds = {part: msg.data[tables.element(part + '_led').index] for part in ('front', 'rear')}
+
+    def _on_along(self, msg):
+        with self._lock:
+            self._along_mm = msg.data
+
+    def _show(self):
+        self.panel.pab_text = self.status.pab_line()
+        self.panel.mission_text = self.status.mission
+
+    def _ask_server(self):
+        """Ask /pirate/server_status after every outcome and about once a second (wall)."""
+        proxy = rospy.ServiceProxy(names.SERVER_STATUS_SERVICE, ServerStatus)
+        while not rospy.is_shutdown():
+            try:
+                proxy.wait_for_service(SERVER_ASK_S)
+                answer = proxy()
+                said = (answer.active, ('%s %s' % (answer.server_state, answer.pab_state)).strip())
+            except (rospy.ROSException, rospy.ServiceException):
+                said = (False, None)
+            with self._lock:
+                self.status.server_status(*said)
+                self._show()
+            self._asked.wait(SERVER_ASK_S)
+            self._asked.clear()
 
     def run(self):
         pygame.display.init()
