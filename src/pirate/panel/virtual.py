@@ -45,7 +45,8 @@ OPERATION_MODE_BUTTON, PLAY_BUTTON = 43, 41
 #: Status lines: mode, PAB, the panel's word, the mission, the robot, each wrapped to the window.
 STATUS_LINES, STATUS_LINE_H = 7, 18
 STATUS_H = 10 + STATUS_LINES * STATUS_LINE_H
-WIDTH, HEIGHT = 940, STATUS_H + 292     # the controls, and the manual labels under the sliders
+WIDTH, HEIGHT = 940, STATUS_H + 300     # the controls, and the manual labels under the sliders
+STRIP_W = 64      # px between two channel strips
 BODY, PANEL_EDGE, TEXT = (38, 38, 42), (90, 90, 96), (225, 225, 225)
 BUTTON_OFF, BUTTON_LIT, SLOT, THUMB = (70, 70, 76), (235, 40, 40), (15, 15, 15), (200, 200, 205)
 KNOB, KNOB_MARK = (120, 120, 128), (250, 250, 250)
@@ -65,7 +66,7 @@ def _layout():
         controls.append(Control('button', channel, label, rect))
     x0 = 420
     for i in range(STRIPS):
-        x = x0 + i * 64
+        x = x0 + i * STRIP_W
         controls.append(Control('knob', KNOB_BASE + i, 'K%d' % (i + 1),
                                 pygame.Rect(x + 14, STATUS_H + 12, 36, 36)))
         for j, (base, name) in enumerate(((S_BASE, 'S'), (M_BASE, 'M'), (R_BASE, 'R'))):
@@ -203,6 +204,7 @@ class VirtualPanel(object):
         if self._font is None:
             pygame.font.init()
             self._font = pygame.font.Font(None, 20)
+            self._small_font = pygame.font.Font(None, 15)
         surface.fill(BODY)
         pygame.draw.rect(surface, PANEL_EDGE, surface.get_rect(), 3)
         pygame.draw.line(surface, PANEL_EDGE, (0, STATUS_H), (WIDTH, STATUS_H), 2)
@@ -220,19 +222,20 @@ class VirtualPanel(object):
             surface.blit(self._font.render(line, True, TEXT), (14, 8 + i * STATUS_LINE_H))
 
     def _draw_manual_labels(self, surface):
-        """In manual mode, what each slider and knob moves (the panel map's words), under it."""
+        """In manual mode, what each slider and knob moves (the panel map's words), under it in
+        at most two lines as wide as a strip."""
         if self.operation_mode != 'MANUAL':
             return
+        fits = lambda text: self._small_font.size(text)[0] <= STRIP_W - 4     # noqa: E731
         for control in self.controls:
             if control.channel in self.manual_labels and control.kind in ('slider', 'knob'):
-                below = control.rect.bottom + (24 if control.kind == 'slider' else 7)
-                image = self._small_font.render(self.manual_labels[control.channel], True, TEXT)
-                surface.blit(image, image.get_rect(center=(control.rect.centerx, below)))
+                top = control.rect.bottom + (20 if control.kind == 'slider' else 5)
+                for i, line in enumerate(wrap(self.manual_labels[control.channel], fits)[:2]):
+                    image = self._small_font.render(line, True, TEXT)
+                    surface.blit(image, image.get_rect(midtop=(control.rect.centerx, top + i * 10)))
 
     def _draw_pab_list(self, surface):
         """The PAB buttons, in two columns under the transport buttons."""
-        if self._small_font is None:
-            self._small_font = pygame.font.Font(None, 15)
         per_column = (len(self.pab_list) + 1) // 2
         for i, line in enumerate(self.pab_list):
             x, y = PAB_LIST_X + (i // per_column) * PAB_LIST_COLUMN_W, PAB_LIST_Y + (i % per_column) * 13
@@ -240,6 +243,11 @@ class VirtualPanel(object):
 
     def _label(self, surface, text, center):
         image = self._font.render(text, True, TEXT)
+        surface.blit(image, image.get_rect(center=center))
+
+    def _small_label(self, surface, text, center):
+        """A small button's label, in the small font: the M row's mission jobs clear the sliders' thumbs."""
+        image = self._small_font.render(text, True, TEXT)
         surface.blit(image, image.get_rect(center=center))
 
     def label(self, control):
@@ -255,7 +263,7 @@ class VirtualPanel(object):
         if control.rect.width > 30:
             self._label(surface, self.label(control), control.rect.center)
         else:
-            self._label(surface, self.label(control), (control.rect.centerx, control.rect.bottom + 9))
+            self._small_label(surface, self.label(control), (control.rect.centerx, control.rect.bottom + 8))
 
     def _draw_slider(self, surface, control):
         rect = control.rect
