@@ -82,3 +82,19 @@ def test_a_run_without_a_mission_has_no_mission_plot(tmp_path):
     ([], None), (['mission refused'], None)])
 def test_the_route_is_read_back_from_a_printed_plan(lines, route):
     assert planner.route_of(lines) == route
+
+
+def test_the_mission_plot_shares_the_run_plots_time_axis(tmp_path):
+    run, _, _, mission = plot_cli.plot_bag_and_mission(RECORDED, str(tmp_path / 'run.png'))
+    assert os.path.exists(str(tmp_path / 'run_mission.png'))
+    assert [t for t, _ in mission.markers] == pytest.approx([start for start, _, _ in run.spans], abs=0.05)
+    assert [pab for _, _, pab in run.spans] == ['CLAMP_STRAIGHT', 'DRIVE', 'DRIVE', 'DRIVE', 'HOME']
+    assert plot_cli.shared_axis(run, mission)[1] >= max(run.times[-1], mission.times[-1])
+
+
+def test_the_mission_plot_draws_the_maps_junctions():
+    from pirate.world import network
+    found = mission_plot.junctions(network.load(network.world_path('inspection_network_90')))
+    assert found and all(mm > 0 for _, mm in found)
+    run = mission_plot.MissionRun([0.0], [400.0], [], [], [('pit', 400.0)], 't', found)
+    assert [value for _, value in mission_plot.panel(run).guards] == [mm for _, mm in found]

@@ -142,3 +142,18 @@ def test_drive_panel_and_events(tmp_path):
         'Odometry [mm]', 'Wheel speed [mm/s]']
     with pytest.raises(ValueError, match='Odometry'):
         plot.panels(run._replace(odometry=[1.0]))
+
+
+def test_a_long_mission_marks_its_pab_spans_not_each_primitive(tmp_path):
+    """103 primitives stacked their labels over the plot: the PABs' spans read instead."""
+    run = _run()
+    markers = [(i * 0.1, 'clamp rear') for i in range(103)]
+    spans = [(0.0, 4.0, 'CLAMP_STRAIGHT'), (4.0, 9.0, 'DRIVE'), (9.0, 11.9, 'HOME')]
+    run = run._replace(markers=markers, spans=spans, title='Mission inspection_network_90: ' + 'long words ' * 30)
+    os.makedirs(RESULTS, exist_ok=True)
+    _, drawn_markers = plot.plot_run(run, os.path.join(RESULTS, 'plot_run_spans.png'), xlim=(0.0, 20.0))
+    assert drawn_markers == []
+    assert plot.pab_entries(spans) == [('P1', 0.0, 'CLAMP_STRAIGHT  4.0 s'), ('P2', 4.0, 'DRIVE  5.0 s'),
+                                       ('P3', 9.0, 'HOME  2.9 s')]
+    few = [(0.5, 'move front'), (3.0, 'clamp rear')]
+    assert plot.marked(few, spans) == (few, [])          # a single PAB keeps its primitives

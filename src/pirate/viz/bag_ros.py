@@ -33,7 +33,7 @@ def read_run(path):
 
     Raises ValueError when the bag holds no robot state to plot.
     """
-    states, feedback, goals, results = _read_pirate_topics(path)
+    states, feedback, goals, results, goal_ids = _read_pirate_topics(path)
     if not states:
         raise ValueError('%s holds no %s messages to plot' % (path, names.ROBOT_STATE_TOPIC))
     found = _primitive_starts(feedback, results)
@@ -44,7 +44,8 @@ def read_run(path):
                    markers=[(t - t0, p) for t, p in found],
                    odometry=[msg.odometry - states[0][1].odometry for _, msg in states],
                    velocity=[msg.velocity for _, msg in states],
-                   events=_marked_ends(results, t0), title=run_title(goals, results, path))
+                   events=_marked_ends(results, t0), title=run_title(goals, results, path),
+                   spans=pab_spans(goals, goal_ids, results, t0), start_s=t0)
     return run, [g.pipe_diameter for _, g in goals if g.pipe_diameter]
 
 
@@ -52,6 +53,15 @@ def _primitive_starts(feedback, results):
     """[(t s, primitive)]: the results' traces, or the feedback's transitions without them."""
     traced = [(p.start, p.name) for _, msg in results for p in msg.result.primitives]
     return traced if traced else [(t, p) for t, p in plot.transitions(feedback)]
+
+
+def pab_spans(goals, goal_ids, results, t0):
+    """[(start s, end s from ``t0``, PAB)] of each goal from its goal to its result
+    (to the last result for one still running when the bag ends)."""
+    ended = {msg.status.goal_id.id: t for t, msg in results}
+    last = max([t for t, _ in results] + [t for t, _ in goals] + [t0])
+    return [(t - t0, ended.get(goal_id, last) - t0, PAB_NAMES.get(goal.name, 'PAB %d' % goal.name))
+            for (t, goal), goal_id in zip(goals, goal_ids)]
 
 
 def _marked_ends(results, t0):
@@ -62,8 +72,8 @@ def _marked_ends(results, t0):
 
 def _read_pirate_topics(path):
     """([(t s, RobotState)], [(t s, goal id, primitive)], [(t s, PirateGoal)],
-    [(t s, PirateActionResult)]) recorded in the bag at ``path``."""
-    states, feedback, goals, results = [], [], [], []
+    [(t s, PirateActionResult)], [goal id of each goal]) recorded in the bag at ``path``."""
+    states, feedback, goals, results, goal_ids = [], [], [], [], []
     with rosbag.Bag(path) as bag:
         topics = [names.ROBOT_STATE_TOPIC, FEEDBACK_TOPIC, GOAL_TOPIC, RESULT_TOPIC]
         for topic, msg, t in bag.read_messages(topics=topics):
@@ -75,7 +85,8 @@ def _read_pirate_topics(path):
                 results.append((t.to_sec(), msg))
             else:
                 goals.append((t.to_sec(), msg.goal))
-    return states, feedback, goals, results
+                goal_ids.append(msg.goal_id.id)
+    return states, feedback, goals, results, goal_ids
 
 
 def _joint_series(states):
@@ -93,14 +104,15 @@ def _joint_series(states):
     return positions, efforts
 
 
-def read_mission(path):
+def read_mission(path, start_s=None):
     """The :data:`pirate.viz.mission_plot.MissionRun` in the bag at ``path``,
-    or None if it holds no mission estimate (a run without the mission executive)."""
+    or None if it holds no mission estimate (a run without the mission executive);
+    ``start_s``: the time of t = 0 (the run plot's :attr:`Run.start_s`)."""
     recorded = {topic: [] for topic in mission_plot.TOPICS}
     with rosbag.Bag(path) as bag:
         for topic, msg, t in bag.read_messages(topics=list(mission_plot.TOPICS)):
             recorded[topic].append((t.to_sec(), msg))
-    return mission_plot.mission_run(recorded)
+    return mission_plot.mission_run(recorded, start_s)
 
 
 def run_title(goals, results, path):

@@ -31,25 +31,29 @@ TOPICS = (ALONG_TOPIC, GOAL_TOPIC, FEEDBACK_TOPIC, RESULT_TOPIC, PAB_GOAL_TOPIC)
 
 #: A mission's run: ``times`` s and ``along_mm`` (the estimate); ``markers``
 #: [(t s, 'PAB ...')]; ``events`` [(t s, 'paused ...' / 'mission ...')];
-#: ``points`` [(name, mm along the map)]; ``title`` text.
-MissionRun = collections.namedtuple('MissionRun', 'times along_mm markers events points title')
+#: ``points`` [(name, mm along the map)]; ``title`` text; ``junctions``
+#: [(what, mm along the map)] of the map's bends and tees.
+MissionRun = collections.namedtuple('MissionRun', 'times along_mm markers events points title junctions',
+                                    defaults=((),))
 
 
-def mission_run(recorded):
+def mission_run(recorded, start_s=None):
     """The :data:`MissionRun` in ``recorded`` ({topic in :data:`TOPICS`: [(t s,
     message)]}, as :func:`pirate.viz.bag_ros.read_mission` reads a bag), or
-    None if it holds no mission estimate (a run without the mission executive)."""
+    None if it holds no mission estimate (a run without the mission executive).
+    Times from ``start_s`` (the run plot's, so both share the axis), else from
+    the mission's first message."""
     along, pab_goals = recorded[ALONG_TOPIC], recorded[PAB_GOAL_TOPIC]
     feedback, results = recorded[FEEDBACK_TOPIC], recorded[RESULT_TOPIC]
     if not along:
         return None
-    t0 = min(t for t, _ in along + pab_goals + feedback)
+    t0 = start_s if start_s is not None else min(t for t, _ in along + pab_goals + feedback)
     markers = [(t - t0, pab_label(msg.goal)) for t, msg in pab_goals]
     events = [(t - t0, text) for t, text in pauses(feedback)]
     events += [(t - t0, 'mission %s: %s' % (msg.result.status, msg.result.message)) for t, msg in results]
     route = _route(recorded[GOAL_TOPIC], results)
     return MissionRun([t - t0 for t, _ in along], [msg.data for _, msg in along], markers, sorted(events),
-                      route_points(route), mission_title(route, results))
+                      route_points(route), mission_title(route, results), route_junctions(route))
 
 
 def pab_label(goal):
@@ -94,6 +98,26 @@ def route_points(route):
     return [(name, pipe_map.points[name] * 1000.0) for name in unique]
 
 
+def junctions(pipe_map):
+    """[(what, mm along)] where each piece that is not a straight pipe begins on ``pipe_map``."""
+    found, along_m = [], 0.0
+    for piece in pipe_map.pieces:
+        if piece.kind != 'straight':
+            found.append((piece.kind.replace('_', ' '), along_m * 1000.0))
+        along_m += piece.length
+    return found
+
+
+def route_junctions(route):
+    """:func:`junctions` of the route's map; () when it cannot be read."""
+    if route is None:
+        return ()
+    try:
+        return junctions(network.load(network.world_path(route[0])))
+    except (network.WorldError, OSError):
+        return ()
+
+
 def mission_title(route, results):
     text = '%s: %s' % (route[0], planner.ROUTE_JOIN.join(route[1])) if route else 'a mission'
     ends = [msg.result.status for _, msg in results]
@@ -101,14 +125,16 @@ def mission_title(route, results):
 
 
 def panel(run):
-    """The one :class:`pirate.viz.plot.Panel`: the estimate and the route's points."""
+    """The one :class:`pirate.viz.plot.Panel`: the estimate, the route's points
+    (dotted levels) and the map's junctions (dashed grey levels)."""
     return plot.Panel('Distance along the route (the executive\'s estimate)', 'along the map [mm]',
-                      [('estimate', run.times, run.along_mm)], [], [],
+                      [('estimate', run.times, run.along_mm)],
+                      [('%s at %.0f mm' % (what, mm), mm) for what, mm in run.junctions], [],
                       [(name, mm) for name, mm in run.points])
 
 
-def plot_mission(run, path, title=None):
-    """Draw ``run`` to the PNG ``path``; return the panel drawn."""
+def plot_mission(run, path, title=None, xlim=None):
+    """Draw ``run`` to the PNG ``path`` (``xlim``: the run plot's time axis); return the panel drawn."""
     drawn = panel(run)
-    plot.render([drawn], run.markers, path, title or run.title, run.events)
+    plot.render([drawn], run.markers, path, title or run.title, run.events, xlim=xlim)
     return drawn

@@ -25,6 +25,7 @@ panels it drew: the data, not a picture of it.
 """
 import collections
 import math
+import textwrap
 
 import matplotlib
 
@@ -44,9 +45,15 @@ PAB_NAMES = {code: name for name, code in CODES.items()}
 #: map joint names to lists as long as ``times`` (rad, mNm); ``orientation``
 #: rad (Fig 4.7), as long as ``times``; ``markers`` [(t s, primitive)];
 #: ``odometry`` mm and ``velocity`` mm/s as long as ``times`` (or empty);
-#: ``events`` [(t s, 'cancelled ...' / 'aborted ...')]; ``title`` text.
+#: ``events`` [(t s, 'cancelled ...' / 'aborted ...')]; ``title`` text;
+#: ``spans`` [(start s, end s, PAB)] of the goals that ran; ``start_s`` the
+#: recorded time (s) of t = 0, so a mission plot of the same bag shares the axis.
 Run = collections.namedtuple('Run', 'times positions efforts orientation markers odometry velocity '
-                                    'events title', defaults=((), (), (), ''))
+                                    'events title spans start_s', defaults=((), (), (), '', (), 0.0))
+#: Above this many primitives a run plot marks its PABs' spans instead (a long mission ran 103).
+MAX_PRIMITIVE_MARKERS = 24
+#: Characters of a title line before it wraps (the figure is 12 in wide).
+TITLE_WIDTH = 120
 #: Label width used to keep tN labels apart, as a fraction of the time axis.
 LABEL_GAP = 0.035
 
@@ -188,14 +195,33 @@ def label_rows(times, span, gap=LABEL_GAP):
 KEY_COLUMNS = 3   # columns of the "tN  time  primitive" key under the plots
 
 
-def render(drawn, markers, path, title=None, events=()):
+def pab_entries(spans):
+    """Key entries ('P1', start s, 'PAB  12.3 s') of the PAB ``spans`` [(start, end, PAB)]."""
+    return [('P%d' % i, start, '%s  %.1f s' % (pab, end - start)) for i, (start, end, pab) in enumerate(spans, 1)]
+
+
+def marked(markers, spans):
+    """What the plot marks: (primitive markers, PAB spans). A run with more
+    than :data:`MAX_PRIMITIVE_MARKERS` primitives and its spans known marks
+    the spans alone: 103 stacked primitive labels read as nothing."""
+    if spans and len(markers) > MAX_PRIMITIVE_MARKERS:
+        return [], list(spans)
+    return list(markers), []
+
+
+def render(drawn, markers, path, title=None, events=(), spans=(), xlim=None):
     """Draw ``drawn`` panels, the primitive ``markers`` and ``events`` to a PNG at ``path``.
 
     As in the report, each transition is a vertical line labelled tN; the
     key under the panels names the primitive of each tN (Tables 6.1-6.4).
     Events (cancel, abort) are red dashed lines, named in the key too.
+    With many primitives the PAB ``spans`` (:func:`marked`) are shaded and
+    labelled PN instead. ``xlim`` (s, s) fixes the time axis (shared with
+    another plot of the same run); the title wraps instead of being clipped.
     """
+    markers, spans = marked(markers, spans)
     entries = [('t%d' % i, t, primitive) for i, (t, primitive) in enumerate(markers, 1)]
+    entries += pab_entries(spans)
     entries += [('!', t, text) for t, text in events]
     key_rows = max(1, math.ceil(len(entries) / KEY_COLUMNS))
     fig = plt.figure(figsize=(12, 2.1 * len(drawn) + 1.5 + 0.2 * key_rows))
@@ -219,6 +245,8 @@ def render(drawn, markers, path, title=None, events=()):
             ax.axvline(t, color='black', linestyle='-', linewidth=0.6, alpha=0.5)
         for t, _ in events:
             ax.axvline(t, color='red', linestyle='--', linewidth=1.2)
+        for i, (start, end, _) in enumerate(spans):
+            ax.axvspan(start, end, color='tab:blue' if i % 2 else 'tab:orange', alpha=0.08)
         ax.set_title(panel.title, fontsize=9, loc='right')
         ax.set_ylabel(panel.ylabel, fontsize=8)
         ax.grid(True, alpha=0.3)
@@ -231,6 +259,8 @@ def render(drawn, markers, path, title=None, events=()):
     for (label, t, _), row in zip(entries, label_rows(times, span)):
         axes[0].annotate(label, (t, 1.02 + 0.1 * row), xycoords=('data', 'axes fraction'),
                          fontsize=7, ha='center', color='red' if label == '!' else 'black')
+    if xlim is not None:
+        axes[0].set_xlim(*xlim)
     axes[-1].set_xlabel('time [s]')
     key = fig.add_subplot(grid[len(drawn)])
     key.axis('off')
@@ -240,14 +270,14 @@ def render(drawn, markers, path, title=None, events=()):
                  '%-3s %6.2f s  %s' % (label, t, text), fontsize=8, va='center',
                  family='monospace', transform=key.transAxes, color='red' if label == '!' else 'black')
     if title:
-        fig.suptitle(title, fontsize=10)
+        fig.suptitle(textwrap.fill(title, TITLE_WIDTH), fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
 
 
-def plot_run(run, path, guards=None, title=None):
-    """Plot ``run`` to ``path`` (title: ``title``, else the run's); return (panels, markers)."""
+def plot_run(run, path, guards=None, title=None, xlim=None):
+    """Plot ``run`` to ``path`` (title: ``title``, else the run's); return (panels, markers drawn)."""
     drawn = panels(run, guards)
-    render(drawn, run.markers, path, title or run.title or None, run.events)
-    return drawn, list(run.markers)
+    render(drawn, run.markers, path, title or run.title or None, run.events, run.spans, xlim)
+    return drawn, marked(run.markers, run.spans)[0]

@@ -40,11 +40,30 @@ def plot_bag(bag_path, output, guards=None, title=None):
     ``guards`` is a guard YAML path; None picks the goal pipe's. Raises
     OSError, ValueError, yaml.YAMLError or bag_ros.BagError on bad input.
     """
+    run, drawn, config_path, _ = plot_bag_and_mission(bag_path, output, guards, title, mission=False)
+    return run, drawn, config_path
+
+
+def plot_bag_and_mission(bag_path, output, guards=None, title=None, mission=True):
+    """:func:`plot_bag`, and the bag's mission (if it holds one and ``mission``)
+    to ``OUTPUT_mission.png`` on the same time axis: (run, panels, config path,
+    MissionRun or None)."""
     run, diameters = bag_ros.read_run(bag_path)
     config, config_path = _guard_config(guards, diameters)
     lines = plot.guard_lines(config, [p for _, p in run.markers])
-    drawn, _ = plot.plot_run(run, output, lines, title)
-    return run, drawn, config_path
+    found = bag_ros.read_mission(bag_path, run.start_s) if mission else None
+    xlim = shared_axis(run, found)
+    drawn, _ = plot.plot_run(run, output, lines, title, xlim)
+    if found is not None:
+        mission_plot.plot_mission(found, os.path.splitext(output)[0] + '_mission.png', xlim=xlim)
+    return run, drawn, config_path, found
+
+
+def shared_axis(run, mission):
+    """(0, s) covering the run and its mission, or None without a mission."""
+    if mission is None:
+        return None
+    return 0.0, max([run.times[-1]] + list(mission.times) + [t for t, _ in mission.events])
 
 
 def main(argv=None):
@@ -56,8 +75,7 @@ def main(argv=None):
     args = parser.parse_args(argv)
     output = args.output or os.path.splitext(args.bag)[0] + '.png'
     try:
-        run, _, config_path = plot_bag(args.bag, output, args.guards, args.title)
-        mission = bag_ros.read_mission(args.bag)
+        run, _, config_path, mission = plot_bag_and_mission(args.bag, output, args.guards, args.title)
     except (OSError, ValueError, yaml.YAMLError, bag_ros.BagError) as error:
         sys.exit('plot_run: %s' % error)
     for i, (t, primitive) in enumerate(run.markers, 1):
@@ -66,6 +84,5 @@ def main(argv=None):
           % (output, len(run.times), len(run.markers), config_path or 'none'))
     if mission is not None:
         mission_output = os.path.splitext(output)[0] + '_mission.png'
-        mission_plot.plot_mission(mission, mission_output)
         print('wrote %s (%s: %d PABs, %d estimates along the route)'
               % (mission_output, mission.title, len(mission.markers), len(mission.times)))
