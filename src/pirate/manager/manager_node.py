@@ -160,9 +160,10 @@ class PirateManager(object):
         for topic, kind in ((names.SETPOINT_TOPIC, SetpointArray), (names.CONTROL_TOPIC, ControlArray),
                             (names.LIMITS_TOPIC, LimitArray)):
             rospy.Subscriber(topic, kind, self._on_command, topic, queue_size=10)
+        self.panel = None
+        self._manual_guard = manual_guard.ManualGuard(manual_guard.settings(book.common))
         rospy.Timer(rospy.Duration(0.1), self._tick)
         self.panel = self._compose_panel()
-        self._manual_guard = manual_guard.ManualGuard(manual_guard.settings(book.common))
         self._reconfigure = self._tunables()
         threading.Thread(target=self._worker, name='pab_worker', daemon=True).start()
         self._action.start()

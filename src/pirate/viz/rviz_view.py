@@ -38,8 +38,10 @@ def framed_config(template, focal, distance):
 
 
 def main(argv=None):
-    """Write the config framed on world ``argv[0]`` next to the ROS logs and start RViz on it."""
-    args = [a for a in (sys.argv[1:] if argv is None else argv) if not a.startswith('__')]
+    """Write the config framed on world ``argv[0]`` next to the ROS logs and start RViz on it
+    (with roslaunch's ``__name:=`` and ``__log:=``, so the node keeps its name)."""
+    given = sys.argv[1:] if argv is None else argv
+    args = [a for a in given if not a.startswith('__')]
     world_name = args[0] if args else 'straight_90'
     focal, distance = framed_view(network.load(network.world_path(world_name)))
     with open(TEMPLATE) as stream:
@@ -49,4 +51,4 @@ def main(argv=None):
     path = os.path.join(folder, 'pirate_%s.rviz' % os.path.basename(world_name).replace('.yaml', ''))
     with open(path, 'w') as stream:
         stream.write(text)
-    os.execvp('rviz', ['rviz', '-d', path])
+    os.execvp('rviz', ['rviz', '-d', path] + [a for a in given if a.startswith('__')])
