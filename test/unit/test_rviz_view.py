@@ -6,9 +6,9 @@ from pirate.world import network
 
 
 @pytest.mark.parametrize('world,focal,distance', [
-    ('straight_90', (0.75, 0.0, 0.0), 2.4),
-    ('inspection_network_90', (1.245, 1.29, 0.0), 4.13),
-    ('inspection_90', (1.17, 1.59, -1.275), 5.09),
+    ('straight_90', (0.75, 0.0, 0.0), 3.3),
+    ('inspection_network_90', (1.245, 1.29, 0.0), 5.68),
+    ('inspection_90', (1.17, 1.59, -1.275), 7.0),
 ])
 def test_the_view_holds_the_whole_network(world, focal, distance):
     found_focal, found_distance = rviz_view.framed_view(network.load(network.world_path(world)))
@@ -22,7 +22,8 @@ def test_the_framed_config_changes_the_view_only():
     text = rviz_view.framed_config(template, (1.0, 2.0, -0.5), 4.5)
     assert 'Focal Point: {X: 1.000, Y: 2.000, Z: -0.500}' in text and '      Distance: 4.500' in text
     changed = [(a, b) for a, b in zip(template.splitlines(), text.splitlines()) if a != b]
-    assert len(changed) == 2 and len(text.splitlines()) == len(template.splitlines())
+    assert 'Offset: {X: 1.000, Y: 2.000, Z: -0.5}' in text and '      Pitch: 1.00' in text
+    assert len(changed) == 4 and len(text.splitlines()) == len(template.splitlines())
 
 
 def test_the_estimate_and_the_true_robot_have_different_colours():

@@ -16,7 +16,9 @@ from pirate.world import network, pose
 TEMPLATE = os.path.join(os.path.dirname(paths.CONFIG_DIR), 'rviz', 'world.rviz')
 #: The view's distance per metre of the world's largest extent, and at least (m): the whole
 #: path inside RViz's default field of view (45 degrees) with a margin.
-DISTANCE_PER_M, MIN_DISTANCE_M = 1.6, 1.2
+DISTANCE_PER_M, MIN_DISTANCE_M = 2.2, 1.2
+#: The view's pitch (rad): steeper than the template's, so the near end of a long network stays in view.
+PITCH_RAD = 1.0
 PATH_STEP_M = 0.05
 
 
@@ -32,8 +34,11 @@ def framed_view(world):
 
 
 def framed_config(template, focal, distance):
-    """The RViz config text ``template`` with its view's focal point and distance replaced."""
+    """The RViz config text ``template`` with its view's focal point, distance and pitch
+    replaced, and the grid centred under the network."""
     text = re.sub(r'Focal Point: \{[^}]*\}', 'Focal Point: {X: %.3f, Y: %.3f, Z: %.3f}' % focal, template, count=1)
+    text = re.sub(r'Offset: \{X: [-0-9.]+, Y: [-0-9.]+,', 'Offset: {X: %.3f, Y: %.3f,' % focal[:2], text, count=1)
+    text = re.sub(r'(\n\s+)Pitch: [0-9.]+', r'\g<1>Pitch: %.2f' % PITCH_RAD, text, count=1)
     return re.sub(r'(\n\s+)Distance: [0-9.]+', r'\g<1>Distance: %.3f' % distance, text, count=1)
 
 
