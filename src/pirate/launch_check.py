@@ -17,7 +17,7 @@ CHOICES = {
     'pipe_diameter': ('90', '110'),     # the diameters with guards (config/guards_*.yaml)
 }
 #: The arguments that are true or false.
-FLAGS = ('rviz', 'record', 'use_sim_time')
+FLAGS = ('rviz', 'record')
 NO_PANEL = ('no operator panel (panel:=none): Play, Stop, confirm, pause and resume of a mission have no '
             'buttons; publish pirate/MidiInput on /ram/input/midi yourself, or start panel.launch')
 
@@ -61,8 +61,6 @@ def _rate_problems(args):
         return ['rate:=%s: a real-time factor above 0 is needed (a number, e.g. rate:=2)' % args['rate']]
     if not rate > 0:
         return ['rate:=%s: a real-time factor above 0 is needed' % args['rate']]
-    if rate > 1 and args.get('use_sim_time', 'true').lower() != 'true':
-        return ['rate:=%s needs use_sim_time:=true (the simulator then owns /clock)' % args['rate']]
     if rate != 1 and args.get('robot') == 'real':
         return ['rate:=%s: the real robot runs in real time (rate:=1)' % args['rate']]
     return []

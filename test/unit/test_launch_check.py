@@ -4,7 +4,7 @@ import pytest
 from pirate import launch_check
 
 GOOD = {'robot': 'sim', 'world': 'straight_90', 'pipe_diameter': '90', 'panel': 'virtual', 'rviz': 'true',
-        'record': 'false', 'rate': '1.0', 'use_sim_time': 'true'}
+        'record': 'false', 'rate': '1.0'}
 
 
 def _with(**changes):
@@ -21,7 +21,6 @@ def test_good_arguments_pass():
 @pytest.mark.parametrize('changes,words', [
     ({'rate': 'abc'}, 'rate:=abc: a real-time factor above 0 is needed'),
     ({'rate': '0'}, 'rate:=0: a real-time factor above 0'),
-    ({'rate': '3', 'use_sim_time': 'false'}, 'rate:=3 needs use_sim_time:=true'),
     ({'robot': 'real', 'rate': '2'}, 'the real robot runs in real time'),
     ({'robot': 'twin'}, 'robot:=twin: use sim or real'),
     ({'panel': 'keys'}, 'panel:=keys: use virtual or midi or none'),
@@ -42,7 +41,7 @@ def test_a_wrong_world_lists_the_worlds(capsys):
 
 
 def test_the_real_robot_needs_no_world():
-    assert launch_check.problems(_with(robot='real', world='nowhere', use_sim_time='false')) == []
+    assert launch_check.problems(_with(robot='real', world='nowhere')) == []
 
 
 def test_no_panel_is_said(capsys):

@@ -117,6 +117,8 @@ def test_sim_launch_headless_and_fast(args, present, absent):
     ('robot.launch', ['robot:=sim'], True),
     ('Manager.launch', ['robot:=real'], False),
     ('Manager.launch', ['robot:=fil'], False),
+    ('operator.launch', [], True),
+    ('operator.launch', ['robot:=real'], False),
 ])
 def test_the_simulated_robot_always_runs_on_simulated_time(entry, args, sim_time):
     """Every launch of the simulated robot sets /use_sim_time (its watchdogs
@@ -165,7 +167,7 @@ def test_the_cameras_are_recorded_to_their_own_bag_only_when_asked():
     (['world:=inspection_network_90'],
      ['/sim_robot', '/pirate_state', '/pirate_manager', '/mission_executive', '/virtual_panel', '/rviz_world'],
      ['/serial_node', '/midi_input']),
-    (['robot:=real', 'panel:=midi', 'use_sim_time:=false'],
+    (['robot:=real', 'panel:=midi'],
      ['/serial_node', '/pirate_manager', '/mission_executive', '/midi_input', '/midi_output', '/rviz'],
      ['/sim_robot', '/virtual_panel']),
     (['panel:=none', 'rviz:=false'], ['/pirate_manager', '/mission_executive'], ['/virtual_panel', '/rviz_world']),
