@@ -25,7 +25,8 @@ GENERATED = (
     ('doc/sequencer.md', 'clamp-table', lambda: markdown(clamp.MACHINE)),
     ('doc/sequencer.md', 'drive-table', lambda: markdown(drive.MACHINE)),
     ('doc/sequencer.md', 'home-table', lambda: markdown(home.MACHINE)),
-    ('doc/sequencer.md', 'junction-table', lambda: markdown(junction_table.MACHINE)),
+    ('doc/sequencer.md', 'junction-table', lambda: markdown(junction_table.MACHINES['front'])),
+    ('doc/sequencer.md', 'junction-rear-first-table', lambda: markdown(junction_table.MACHINES['rear'])),
     ('doc/panel.md', 'panel-controls', doc_table.generate),
 )
 

@@ -111,17 +111,17 @@ def test_the_printed_text_of_every_guard_decides_as_the_guard_runs(table):
 
 def test_a_changed_guard_prints_differently_and_the_reader_sees_it():
     """The check above can fail: a guard whose text says one thing and whose test another is caught."""
-    front, rear = fact('front'), fact('rear')
-    reader = Reader.of([all_of(front, rear)])
+    lead, trail = fact('lead', 'front'), fact('trail', 'rear')
+    reader = Reader.of([all_of(lead, trail)])
 
     class Lying(object):
         text = 'front AND rear'
 
         @staticmethod
         def test(facts):
-            return facts.front or facts.rear
+            return facts.lead or facts.trail
 
-    facts = junction_table.Facts(found=False, front=True, rear=False, straight=False, turn=False)
+    facts = junction_table.Facts(found=False, lead=True, trail=False, straight=False, turn=False)
     assert reader.read(Lying.text)(facts) != Lying.test(facts)
 
 

@@ -25,6 +25,7 @@ APPROACH = SETTINGS['approach_mm']
 CLEAR = SETTINGS['clear_mm']
 TURN_END = SETTINGS['turn_end_mm'][90]
 TURN_END_FROM_RUN = SETTINGS['turn_end_from_run_mm'][90]
+TURN_END_REAR_FIRST = SETTINGS['turn_end_rear_first_mm'][90]
 SEARCH = SETTINGS['search_mm']
 
 
@@ -110,7 +111,8 @@ def test_the_way_back_takes_the_bend_rear_first_still_clamped_sideways():
     entry_mm, exit_mm = 2000, 2090
     assert back[0].distance_mm == pytest.approx((exit_mm + REAR + APPROACH) - 3000)
     assert back[1].distance_mm == -SEARCH
-    assert back[2].distance_mm == pytest.approx(300 - (entry_mm - TURN_END))
+    assert back[1].end_m * 1000 == pytest.approx(entry_mm - TURN_END_REAR_FIRST)   # before the entry
+    assert back[2].distance_mm == pytest.approx(300 - (entry_mm - TURN_END_REAR_FIRST))
     assert back[2].end_m == pytest.approx(0.3)
 
 
@@ -390,20 +392,42 @@ def test_a_turn_the_junction_pab_does_not_take_is_refused_by_the_real_server_tab
     planner.check_runnable(run(world(BEND_LEFT, {'pit': 300, 'target': 3000}), 'pit', 'target'))
 
 
-def test_the_way_back_through_a_junction_is_refused_while_no_pab_takes_it_rear_first():
-    """The plan takes the bend rear first on the way back; the junction PAB
-    refuses a negative search distance whatever the robot does, so the route
-    is refused before anything moves (it used to clamp and drive up to the
-    bend, then be rejected there); the way out alone still runs, and a server
-    that took junctions rear first would run the round trip."""
+def test_the_way_back_through_a_junction_runs_where_the_pab_takes_it_rear_first():
+    """The plan takes the bend rear first on the way back (a negative search
+    distance); the junction PAB takes every direction it takes front first
+    rear first too, so the round trip is runnable; a server that did not would
+    have the route refused before anything moves, naming the step."""
     round_trip = run(world(BEND_LEFT, {'pit': 300, 'target': 3000}), 'pit', 'target', 'pit')
-    assert not goals.built('MITRE_BEND', 'LEFT', rear_first=True) and goals.built('DRIVE', rear_first=True)
+    assert goals.built('MITRE_BEND', 'LEFT', rear_first=True) and goals.built('DRIVE', rear_first=True)
+    planner.check_runnable(round_trip)
     with pytest.raises(planner.PlanError, match=r"step 6 \(MITRE_BEND LEFT, mitre_1\): the Pirate Server cannot take "
-                                                r"MITRE_BEND LEFT rear first yet \(taking a junction rear first is "
-                                                r"not built\); the robot cannot take this route back through mitre_1"):
-        planner.check_runnable(round_trip)
-    planner.check_runnable(run(world(BEND_LEFT, {'pit': 300, 'target': 3000}), 'pit', 'target'))
-    planner.check_runnable(round_trip, built=lambda pab, option=None, rear_first=False: True)
+                                                r"MITRE_BEND LEFT rear first yet; the robot cannot take this route "
+                                                r"back through mitre_1"):
+        planner.check_runnable(round_trip, built=lambda pab, option=None, rear_first=False: not rear_first)
+
+
+@pytest.mark.parametrize('pieces', [
+    BEND_LEFT,
+    [{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'branch', 'side': 'right'},
+     {'type': 'straight', 'length_mm': 1500}],
+    [{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': 'left', 'leave': 'branch'},
+     {'type': 'straight', 'length_mm': 1500}],
+    [{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': 'up'},
+     {'type': 'straight', 'length_mm': 1500}]])
+@pytest.mark.parametrize('diameter', [90, 110])
+def test_every_route_back_through_a_junction_taken_in_is_planned_and_runnable(pieces, diameter):
+    """There and back through each junction the PAB takes: each junction step
+    on the way back searches backwards (negative distance) in the direction
+    it was taken in, from the clamp the way in left, and the server runs it."""
+    length = sum(p.get('length_mm', 0) for p in pieces) + diameter
+    net = world(pieces, {'pit': 300, 'target': length - 500}, diameter=diameter)
+    round_trip = run(net, 'pit', 'target', 'pit')
+    taken = [s for s in round_trip.steps if s.junction is not None]
+    assert len(taken) == 2
+    there, back = taken
+    assert there.distance_mm > 0 > back.distance_mm and (there.pab, there.option) == (back.pab, back.option)
+    planner.check_runnable(round_trip)
+    assert round_trip.steps[-1].end_m == pytest.approx(0.3)
 
 
 def test_a_junction_direction_the_goal_cannot_carry_is_refused(monkeypatch):

@@ -1,6 +1,7 @@
 """Sensing a junction ahead from what the robot senses (report 4.7.4).
 
-"Drive until the front part loses traction": the clamped front V presses
+"Drive until the front part loses traction": the clamped leading V (the
+front's, or the rear's when the robot drives backwards) presses
 its apex wheel on one wall and its two end wheels on the other; where the
 wall under the apex goes away (the open side of a T-joint, the far side of
 a mitre bend) the V's spring has nothing to press against. The clamp's
@@ -35,17 +36,19 @@ class JunctionSensor(object):
     """Watches the front V while the robot searches; :meth:`update` per state.
 
     ``guards``: :class:`pirate.sequencer.guards.Guards` (its ``junction``
-    row and ``clamp_state`` row); ``start``: the RobotView when the search began.
+    row and ``clamp_state`` row); ``start``: the RobotView when the search
+    began; ``part``: the leading part ('front' / 'rear'), whose V it watches.
+    The window is odometry travelled either way.
     """
 
-    def __init__(self, guards, start):
+    def __init__(self, guards, start, part='front'):
         row = guards.row('junction')
         self.close_rad = float(row['close_rad'])
         self.window_mm = float(row['close_window_mm'])
         self.samples = int(row['samples'])
         self.spring_mnm = clamp_state.spring_clamp_mnm(guards)
-        self.outer = CLAMP_BENDS['front'][0]
-        self.sign = 1 if guards.pair('clamp', 'front').outer.setpoint > 0 else -1
+        self.outer = CLAMP_BENDS[part][0]
+        self.sign = 1 if guards.pair('clamp', part).outer.setpoint > 0 else -1
         self._track = [(start.odometry, start.angles[self.outer])]   # (mm, rad), oldest first
         self._run = []
         self.sensed = None
@@ -65,7 +68,7 @@ class JunctionSensor(object):
     def _reference(self, view):
         """The outer bend's angle ``close_window_mm`` of odometry before ``view``
         (the oldest one kept while the search has not gone that far)."""
-        while len(self._track) > 1 and view.odometry - self._track[1][0] >= self.window_mm:
+        while len(self._track) > 1 and abs(view.odometry - self._track[1][0]) >= self.window_mm:
             self._track.pop(0)
         return self._track[0][1]
 

@@ -12,7 +12,8 @@ plan can be printed and checked (``rosrun pirate plan_mission MAP FROM TO``):
   at the mission's speed; every other PAB at its own (speed 0: a junction
   PAB searches and crosses at the speed it was measured at);
 - take each mitre bend / T-joint in the direction the route goes; backwards
-  (rear first) on the way back, with a negative search distance; straight
+  (rear first: the rear part leads, the robot backs out the way it came) on
+  the way back, which the goal says by a negative search distance; straight
   on past a T-joint open to the left or right, drive past it clamped
   straight instead (:func:`pirate.sequencer.junctions.driven_past`), either
   way;
@@ -30,7 +31,6 @@ import collections
 from pirate.sequencer import goals
 from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.junctions import STRAIGHT_CLAMP, driven_past, is_turn, label, required_clamp
-from pirate.sequencer.pabs.junction import REAR_FIRST_WHY
 from pirate.world.network import turns_at_corner
 
 #: One junction of the map, as the route meets it. ``from_run``: a T-joint
@@ -153,7 +153,7 @@ class _Planner(object):
                             % (came_from, junction.name, 'front' if sign > 0 else 'rear',
                                self.settings['approach_mm']))
         self._drive((stop_m - self.at) * 1000, 'up to %s' % junction.name)
-        clear_mm = self._turn_end_mm(junction) if is_turn(junction.direction) else self.settings['clear_mm']
+        clear_mm = self._turn_end_mm(junction, sign) if is_turn(junction.direction) else self.settings['clear_mm']
         after_m = (junction.exit_m if sign > 0 else junction.entry_m) + sign * clear_mm / 1000.0
         pab = 'MITRE_BEND' if junction.kind == 'mitre' else 'T_JOINT'
         self.add(pab, junction.direction.upper(), sign * self.settings['search_mm'], self.at, after_m,
@@ -175,18 +175,21 @@ class _Planner(object):
         self._drive((past_m - self.at) * 1000, 'past %s (open %s: clamped straight, no wheel meets its opening)'
                     % (junction.name, junction.open_side))
 
-    def _turn_end_mm(self, junction):
+    def _turn_end_mm(self, junction, sign=1):
         """How far past the junction a turn leaves the middle, mm: the robot's
         geometry round the corner, so one figure per pipe diameter (and, where
         it differs, for a T-joint entered through its run and left by its
-        branch: ``turn_end_from_run_mm``)."""
-        ends = self.settings['turn_end_mm']
+        branch: ``turn_end_from_run_mm``); taken rear first (``sign`` -1),
+        ``turn_end_rear_first_mm``, before the junction's entry."""
+        key = 'turn_end_mm' if sign > 0 else 'turn_end_rear_first_mm'
+        ends = self.settings.get(key) or {}
         from_run = self.settings.get('turn_end_from_run_mm') or {}
-        if junction.from_run and junction.diameter_mm in from_run:
+        if sign > 0 and junction.from_run and junction.diameter_mm in from_run:
             return from_run[junction.diameter_mm]
         if junction.diameter_mm not in ends:
-            raise PlanError('%s: no turn end measured for a %d mm pipe (config/supervisory.yaml turn_end_mm has %s)'
-                            % (junction.name, junction.diameter_mm, ', '.join(str(d) for d in sorted(ends))))
+            raise PlanError('%s: no turn end measured for a %d mm pipe (config/supervisory.yaml %s has %s)'
+                            % (junction.name, junction.diameter_mm, key,
+                               ', '.join(str(d) for d in sorted(ends)) or 'none'))
         return ends[junction.diameter_mm]
 
     def _check_takeable(self, junction):
@@ -242,7 +245,7 @@ def check_runnable(route_plan, built=None, book=None):
     """Raise :class:`PlanError` naming the first step the Pirate Server cannot
     run (a PAB it does not have yet, an option its goal cannot carry, or a
     junction PAB that does not start from the clamp the route holds there, a
-    junction taken rear first on the way back while the PAB does not take it so),
+    junction taken rear first on the way back that the PAB does not take so),
     so that a mission through it is refused before the robot moves rather
     than stopped at that junction (a junction PAB that does not take that
     direction yet included). ``built(pab, option, rear_first=False)``: default
@@ -261,9 +264,8 @@ def check_runnable(route_plan, built=None, book=None):
             raise PlanError('%s: the Pirate Server cannot run %s%s yet; the robot cannot take this route'
                             % (where, step.pab, ' %s' % step.option if step.option else ''))
         if _rear_first(step) and not built(step.pab, step.option or None, rear_first=True):
-            raise PlanError('%s: the Pirate Server cannot take %s %s rear first yet (%s); the robot cannot take '
-                            'this route back through %s' % (where, step.pab, step.option, REAR_FIRST_WHY,
-                                                            step.junction.name))
+            raise PlanError('%s: the Pirate Server cannot take %s %s rear first yet; the robot cannot take '
+                            'this route back through %s' % (where, step.pab, step.option, step.junction.name))
         _check_start_clamp(where, step, book)
 
 

@@ -1,36 +1,45 @@
 """Where in a corner the robot senses it stands (a turn of report 4.7.4, read back).
 
-A turn leaves its signature in the bend angles: Bend II round (the front
-part turned into the new pipe), Bend III round (the middle swinging round),
-Bend IV round (the rear V coming round). The junction PAB resumes a
+A turn leaves its signature in the bend angles; the front leading: Bend II
+round (the front part turned into the new pipe), Bend III round (the middle
+swinging round), Bend IV round (the rear V coming round); the rear leading,
+the mirror: Bend III, Bend II, Bend I. The junction PAB resumes a
 cancelled turn from them; Home refuses to start on them. Thresholds (rad):
 the diameter's ``turn`` guard row; a diameter without one has no corner.
 """
 from pirate.sequencer.pabs import turn_motions as motions
 from pirate.sequencer.pabs.clamp import SIDES, in_region, region_around
 
+BEND_NAMES = {'bend_i': 'Bend I', 'bend_ii': 'Bend II', 'bend_iii': 'Bend III', 'bend_iv': 'Bend IV'}
 
-def facts(guards, view):
-    """The corner facts of junction.Facts: front_round, middle_round, middle_swung, rear_round
+
+def facts(guards, view, lead=None):
+    """The corner facts of junction.Facts, ``lead`` (turn_motions.Lead, default
+    the front) leading: lead_round, middle_round, middle_swung, trail_round
     ({} without a ``turn`` row)."""
     if not guards.has('turn'):
         return {}
-    row, angles = guards.row('turn'), view.angles
-    return dict(front_round=motions.steered(row, view),
-                middle_round=angles['bend_iii'] >= float(row['resume_middle_rad']),
-                middle_swung=angles['bend_iii'] >= float(row['swing_rad']),
-                rear_round=angles['bend_iv'] >= float(row['resume_rear_rad']))
+    lead = lead or motions.FRONT_LEADS
+    row, angles = motions.turn_row(guards, lead), view.angles
+    return dict(lead_round=motions.steered(row, view, lead),
+                middle_round=angles[lead.trail_inner] >= float(row['resume_middle_rad']),
+                middle_swung=angles[lead.trail_inner] >= float(row['swing_rad']),
+                trail_round=angles[lead.trail_outer] >= float(row['resume_rear_rad']))
 
 
-def text(view, facts):
+def text(view, facts, lead=None):
     """What says the robot is round a corner ('' when nothing does), for a refusal."""
+    lead = lead or motions.FRONT_LEADS
     angles, said = view.angles, []
-    if facts.get('front_round'):
-        said.append('Bend II %.2f rad: the front turned into the new pipe' % angles['bend_ii'])
+    if facts.get('lead_round'):
+        said.append('%s %.2f rad: the %s turned into the new pipe' % (BEND_NAMES[lead.inner], angles[lead.inner],
+                                                                      lead.part))
     if facts.get('middle_round') or facts.get('middle_swung'):
-        said.append('Bend III %.2f rad: the middle swinging round' % angles['bend_iii'])
-    if facts.get('rear_round'):
-        said.append('Bend IV %+.2f rad: the rear V coming round' % angles['bend_iv'])
+        said.append('%s %.2f rad: the middle swinging round' % (BEND_NAMES[lead.trail_inner],
+                                                                angles[lead.trail_inner]))
+    if facts.get('trail_round'):
+        said.append('%s %+.2f rad: the %s V coming round' % (BEND_NAMES[lead.trail_outer],
+                                                             angles[lead.trail_outer], lead.trail))
     return ', '.join(said)
 
 

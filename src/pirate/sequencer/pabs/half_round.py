@@ -25,7 +25,7 @@ def said(guards, view, after):
     """What says the robot stands half round a corner, for a refusal ('' when nothing does).
     ``after``: how the last goal ended (:data:`~pirate.sequencer.pabs.base.Ended`, or None)."""
     sensed = corner.facts(guards, view)
-    text = corner.text(view, {name: sensed.get(name) for name in ('front_round', 'middle_swung')})
+    text = corner.text(view, {name: sensed.get(name) for name in ('lead_round', 'middle_swung')})
     steered_in = _steered_in(view, guards, after)
     if not (_stopped_in_a_corner(view, guards, after, sensed) or steered_in):
         return text
@@ -76,4 +76,4 @@ def _stopped_in_a_corner(view, guards, after, sensed):
     if not _stopped_here(view, guards, after):
         return False
     return after.state in junction_table.CORNER_STATES or (
-        after.state == junction_table.BRINGING_REAR and sensed.get('middle_round'))
+        after.state in junction_table.BRINGING_STATES and sensed.get('middle_round'))

@@ -152,7 +152,7 @@ def _corner_hint(ctx, after):
     finished)."""
     view = ctx.feed.latest()
     sensed = corner.facts(ctx.guards, view)
-    sensed.pop('rear_round', None)
+    sensed.pop('trail_round', None)
     side = corner.side_turned(ctx.guards, view)
     if any(sensed.values()):
         said = 'the bends say half round a corner toward the %s (%s)' % (side, corner.text(view, sensed))

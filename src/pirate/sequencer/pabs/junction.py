@@ -25,22 +25,24 @@ from pirate.sequencer.pabs import corner as corner_sensing
 from pirate.sequencer.pabs import turn_motions as motions
 from pirate.sequencer.pabs.base import Pab, PabFailed
 from pirate.sequencer.pabs.clamp import Clamp, in_region, region_around
-from pirate.sequencer.pabs.junction_table import (
-    BRINGING_REAR, CHANGE_MODES, CLAMPING_AT_CORNER, CLAMPING_FRONT, CLAMPING_REAR, CROSSING_FRONT, CROSSING_REAR,
-    DRIVING_IN, LIFTING_FRONT, MACHINE, RE_ADJUSTING, SEARCHING, STEERING_FRONT, STOPPING, STRAIGHTENING,
-    SWINGING_MIDDLE, UNCLAMPING_FRONT, UNCLAMPING_REAR, Facts, first_step)
+from pirate.sequencer.pabs import junction_table as table
+from pirate.sequencer.pabs.junction_table import (  # noqa: F401  (the front-first states, by name)
+    BRINGING_REAR, CHANGE_MODES, CLAMPING_FRONT, CLAMPING_AT_CORNER, CLAMPING_REAR, CROSSING_FRONT,
+    CROSSING_REAR, DRIVING_IN, LIFTING_FRONT, MACHINE, MACHINES, RE_ADJUSTING, SEARCHING, STEERING_FRONT, STOPPING,
+    STRAIGHTENING, SWINGING_MIDDLE, UNCLAMPING_FRONT, UNCLAMPING_REAR, Facts, first_step)
 from pirate.sequencer.pabs.junction_table import SENSED_STATES  # noqa: F401  (the PAB's: where a localiser anchors)
 from pirate.sequencer.pabs.wheels import Progress, speed_problem, stop_wheels
 from pirate.state.feed import TimedOut
 
-#: What a turn that did not succeed leaves once its rear came round the
-#: corner, for the same goal re-sent (the server keeps it,
-#: :meth:`TakeJunction.unfinished`): the fact it makes true (``rear_through``,
+#: What a turn that did not succeed leaves once its trailing part came round
+#: the corner, for the same goal re-sent (the server keeps it,
+#: :meth:`TakeJunction.unfinished`): the fact it makes true (``trail_through``,
 #: ``driving_in``, ``driven_in``) while the odometry lies in ``from_mm`` ..
-#: ``to_mm`` (give or take the drive's tolerance): where the rear came
+#: ``to_mm`` (give or take the drive's tolerance): where the trailing part came
 #: through; the drive in from its start to its planned end; once driven,
-#: to where the wheels stopped.
-PastCorner = collections.namedtuple('PastCorner', 'fact from_mm to_mm')
+#: to where the wheels stopped. ``lead``: the part that led ('front' / 'rear'),
+#: so a turn taken the other way is not resumed from it.
+PastCorner = collections.namedtuple('PastCorner', 'fact from_mm to_mm lead', defaults=('front',))
 
 UPRIGHT = math.pi / 2
 #: Clamp orientations (rad, Fig 4.7) by name.
@@ -62,6 +64,10 @@ JUNCTIONS = {
 }
 #: (kind, direction) this PAB takes today; the rest are refused with the reason.
 TAKEN = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right'), ('tee', 'left'), ('tee', 'right')}
+#: (kind, direction) it takes rear first too: a goal with a negative search
+#: distance, the robot driving backwards out of the network with the rear
+#: part leading (the same table, :func:`pirate.sequencer.pabs.junction_table.machine`).
+TAKEN_REAR_FIRST = TAKEN
 #: Why a direction of a junction kind is not taken (tried in the twin; what a
 #: clamp holds in a steep pipe: bench/vertical_hold).
 NOT_TAKEN = {
@@ -90,8 +96,9 @@ def straight_sideways_problem(guards, speed):
     return None
 
 
-#: Why a junction PAB refuses a negative search distance whatever the robot's state.
-REAR_FIRST_WHY = 'taking a junction rear first is not built'
+#: How a goal says which part leads: the sign of its search distance (Pirate.action's ``distance``, signed as
+#: a Drive's: negative drives backwards, the rear part leading; 0 is the default distance, front first).
+LEAD_BY_SIGN = 'negative: backwards, the rear leading'
 
 #: Why a turn's speed has a range (config/guards_<mm>.yaml turn goal_speed_min / goal_speed_max;
 #: bench/junction_turn_probe --speed).
@@ -102,7 +109,8 @@ SPEED_WHY = ("measured in the twin: faster, the rear's wheels pushed the front V
 
 
 #: What a resumed turn says it went on with, by the record's fact.
-RESUMED_TEXT = {'rear_through': 'clamping the rear that had come through', 'driving_in': 'the drive into the new pipe',
+RESUMED_TEXT = {'trail_through': 'clamping the trailing part that had come through',
+                'driving_in': 'the drive into the new pipe',
                 'driven_in': 'straightening after the drive into the new pipe'}
 
 
@@ -110,24 +118,30 @@ class JunctionMissing(PabFailed):
     """No junction within the goal's distance (the result says junction_missing)."""
 
 
-class TakeJunction(Pab):
-    """Take the junction ahead: ``kind`` 'mitre' or 'tee', ``direction`` or None (bad option)."""
+def lead_of(goal):
+    """The part that leads through the junction (:data:`LEAD_BY_SIGN`): 'rear' for a negative search distance."""
+    return 'rear' if goal.distance < 0 else 'front'
 
-    machine = MACHINE
+
+class TakeJunction(Pab):
+    """Take the junction ahead of ``lead`` ('front': forwards; 'rear':
+    backwards): ``kind`` 'mitre' or 'tee', ``direction`` or None (bad option)."""
 
     @classmethod
     def for_goal(cls, goal):
         kind, label, name, options = JUNCTIONS[goal.name]
         direction, clamps = options.get(goal.option, (None, ()))
-        return cls(kind, label, name, direction, clamps)
+        return cls(kind, label, name, direction, clamps, lead_of(goal))
 
     @classmethod
     def takes(cls, name, option, rear_first=False):
         direction = JUNCTIONS[name][3].get(option, (None,))[0]
-        return not rear_first and (JUNCTIONS[name][0], direction) in TAKEN
+        return (JUNCTIONS[name][0], direction) in (TAKEN_REAR_FIRST if rear_first else TAKEN)
 
-    def __init__(self, kind, label, name, direction, clamps):
+    def __init__(self, kind, label, name, direction, clamps, lead='front'):
         self.kind, self.label, self.name, self.direction, self.clamps = kind, label, name, direction, clamps
+        self.lead = motions.Lead.of(lead)
+        self.machine = MACHINES[lead]
         self.junction_odometry = math.nan       # mm from the goal's start (result field)
         self.junction_missing = False
         self.sensor = None
@@ -150,19 +164,22 @@ class TakeJunction(Pab):
 
     @classmethod
     def record_from(cls, data):
-        """A :class:`PastCorner` from ``data`` ({'fact', 'from_mm', 'to_mm'})."""
+        """A :class:`PastCorner` from ``data`` ({'fact', 'from_mm', 'to_mm'}, optional 'lead', default 'front')."""
         fact, from_mm, to_mm = data['fact'], float(data['from_mm']), float(data['to_mm'])
+        lead = data.get('lead', 'front')
         if fact not in RESUMED_TEXT:
             raise ValueError('fact %r is none of %s' % (fact, ', '.join(sorted(RESUMED_TEXT))))
+        if lead not in table.LEADS:
+            raise ValueError('lead %r is none of %s' % (lead, ', '.join(sorted(table.LEADS))))
         if not math.isfinite(from_mm) or not math.isfinite(to_mm) or from_mm > to_mm:
             raise ValueError('odometry span %g .. %g mm is not one' % (from_mm, to_mm))
-        return PastCorner(fact, from_mm, to_mm)
+        return PastCorner(fact, from_mm, to_mm, lead)
 
     def _carried_facts(self, guards, view):
         """The record's fact, while the odometry lies in its span (give or
         take the drive's tolerance, mm)."""
         record, tolerance = self.carried, float(guards.drive['tolerance'])
-        if not self.turning or record is None or not (
+        if not self.turning or record is None or record.lead != self.lead.part or not (
                 record.from_mm - tolerance <= view.odometry <= record.to_mm + tolerance):
             return {}
         return {record.fact: True}
@@ -174,9 +191,11 @@ class TakeJunction(Pab):
         if self.direction is None:
             return 'a %s is taken %s, not %s' % (self.label, allowed,
                                                  codes.OPTION_NAMES.get(goal.option, goal.option))
-        if not self.takes(goal.name, goal.option):
-            return ('%s %s is not yet taken by this PAB (%s; taken today: %s)'
-                    % (self.label, self.direction.upper(), NOT_TAKEN[self.direction], _taken_text()))
+        rear_first = self.lead.part == 'rear'
+        if not self.takes(goal.name, goal.option, rear_first):
+            return ('%s %s%s is not yet taken by this PAB (%s; taken today: %s)'
+                    % (self.label, self.direction.upper(), ' rear first' if rear_first else '',
+                       NOT_TAKEN.get(self.direction, 'not measured in the twin'), _taken_text(rear_first)))
         if not guards.has('junction'):
             return 'no junction guards for a %d mm pipe' % guards.pipe_diameter
         if self.turning and not guards.has('turn'):
@@ -197,18 +216,18 @@ class TakeJunction(Pab):
     @staticmethod
     def _check_distance(goal, guards):
         limit = float(guards.row('junction')['max_search_mm'])
-        if not math.isfinite(goal.distance) or goal.distance < 0 or goal.distance > limit:
-            return ('junction search distance %r mm outside [0, %.0f] mm (0: the default; %s)'
-                    % (goal.distance, limit, REAR_FIRST_WHY))
+        if not math.isfinite(goal.distance) or abs(goal.distance) > limit:
+            return ('junction search distance %r mm outside [-%.0f, %.0f] mm (0: the default; %s)'
+                    % (goal.distance, limit, limit, LEAD_BY_SIGN))
         return None
 
     def _check_clamp(self, view, guards):
         """Accept a robot the table can start (or, for a turn, resume) from;
         else the reason, saying where in a corner the robot senses it is."""
         facts = self.sensed_facts(guards, view)
-        corner = corner_sensing.text(view, facts._asdict())
+        corner = corner_sensing.text(view, facts._asdict(), self.lead)
         if self.turning:
-            if first_step(facts) is not None:
+            if first_step(facts, self.lead.part) is not None:
                 return None
             return self._turn_refusal(view, guards, facts, corner)
         sensed = clamp_state.sensed(guards, view)
@@ -249,17 +268,18 @@ class TakeJunction(Pab):
                     'resumes with the rear clamped before the middle has swung, or the front clamped after'
                     % (self.label, self.direction.upper(), corner,
                        clamp_state.idle_state(clamp_state.sensed(guards, view))))
-        if facts.toward and facts.front and not facts.rear:
-            return ('%s; %s first (a turn cancelled while clamping its rear past the corner reads the same: '
+        if facts.toward and facts.lead and not facts.trail:
+            return ('%s; %s first (a turn cancelled while clamping its trailing part past the corner reads the same: '
                     '%s then ends it there, %.0f mm short of its end; the robot cannot sense which)'
                     % (self._start_text(view, guards), clamp, clamp, float(guards.row('turn')['drive_in_mm'])))
         return '%s; %s first' % (self._start_text(view, guards), clamp)
 
     def sensed_facts(self, guards, view, found=False):
         """:data:`Facts` of the robot in ``view`` for this goal (``found``: the PAB's own, not sensed)."""
-        sensed = clamp_state.sensed(guards, view)
-        corner = corner_sensing.facts(guards, view)
-        return Facts(found=found, front=sensed.front == clamp_state.FULL, rear=sensed.rear == clamp_state.FULL,
+        sensed = clamp_state.sensed(guards, view)._asdict()
+        corner = corner_sensing.facts(guards, view, self.lead)
+        return Facts(found=found, lead=sensed[self.lead.part] == clamp_state.FULL,
+                     trail=sensed[self.lead.trail] == clamp_state.FULL,
                      straight=in_region(view.orientation, region_around(guards, 'straight',
                                                                         self._target(view, guards))),
                      turn=self.turning,
@@ -295,29 +315,32 @@ class TakeJunction(Pab):
 
     # --- running --------------------------------------------------------------
     def actions(self):
-        return {
-            CHANGE_MODES: self._change_modes,
-            SEARCHING: self._search,
-            STOPPING: stop_wheels,
-            UNCLAMPING_FRONT: self._unclamp_front,
-            CROSSING_FRONT: lambda ctx: motions.drive_across(ctx, 'front'),
-            CLAMPING_FRONT: lambda ctx: motions.clamp_full(ctx, 'front'),
-            UNCLAMPING_REAR: lambda ctx: motions.open_to_cross(ctx, 'rear'),
-            CROSSING_REAR: lambda ctx: motions.drive_across(ctx, 'rear'),
-            CLAMPING_REAR: lambda ctx: motions.clamp_full(ctx, 'rear'),
-            STRAIGHTENING: lambda ctx: Clamp(self._target()).run(ctx),
-            RE_ADJUSTING: lambda ctx: Clamp(self._target()).run(ctx),
-            LIFTING_FRONT: lambda ctx: ctx.prims.move_front('move_front_turn'),
-            STEERING_FRONT: self._steer_front,
-            CLAMPING_AT_CORNER: motions.clamp_at_corner,
-            SWINGING_MIDDLE: motions.swing_middle,
-            BRINGING_REAR: self._bring_rear_and_record,
-            DRIVING_IN: self._drive_in,
+        lead = self.lead
+        by_template = {
+            table.CHANGE_MODES: self._change_modes,
+            table.SEARCHING: self._search,
+            table.STOPPING: stop_wheels,
+            table.UNCLAMPING_LEAD: self._unclamp_lead,
+            table.CROSSING_LEAD: lambda ctx: motions.drive_across(ctx, lead.part, lead),
+            table.CLAMPING_LEAD: lambda ctx: motions.clamp_full(ctx, lead.part),
+            table.UNCLAMPING_TRAIL: lambda ctx: motions.open_to_cross(ctx, lead.trail, lead),
+            table.CROSSING_TRAIL: lambda ctx: motions.drive_across(ctx, lead.trail, lead),
+            table.CLAMPING_TRAIL: lambda ctx: motions.clamp_full(ctx, lead.trail),
+            table.STRAIGHTENING: lambda ctx: Clamp(self._target()).run(ctx),
+            table.RE_ADJUSTING: lambda ctx: Clamp(self._target()).run(ctx),
+            table.LIFTING_LEAD: lambda ctx: ctx.prims.move_front('move_front_turn'),
+            table.STEERING_LEAD: self._steer_lead,
+            table.CLAMPING_LEAD_AT_CORNER: lambda ctx: motions.clamp_at_corner(ctx, lead),
+            table.SWINGING_MIDDLE: lambda ctx: motions.swing_middle(ctx, lead),
+            table.BRINGING_TRAIL: self._bring_trail_and_record,
+            table.DRIVING_IN: self._drive_in,
         }
+        actions = {table.state(template, lead.part): action for template, action in by_template.items()}
+        return {name: actions[name] for name in self.machine.states if name in actions}
 
-    def _unclamp_front(self, ctx):
-        """Straight on, ready the front to cross (:func:`~pirate.sequencer.pabs.turn_motions.open_to_cross`).
-        A turn opens the front V partly, then levels the front part on its
+    def _unclamp_lead(self, ctx):
+        """Straight on, ready the leading part to cross (:func:`~pirate.sequencer.pabs.turn_motions.open_to_cross`).
+        A turn opens the leading V partly, then levels the leading part on its
         side where its row says (``level_front``, :func:`~pirate.sequencer.pabs.turn_motions.level_front`). Only
         here, at a turn's start: a turn resumed into its steering does not
         level (twin, 110 mm T-joint entered through its run, re-sent after a
@@ -325,11 +348,11 @@ class TakeJunction(Pab):
         2.94 rad, past the band of the sideways clamp, and its clamp past the
         corner timed out in 6 of 10)."""
         if not self.turning:
-            motions.open_to_cross(ctx, 'front')
+            motions.open_to_cross(ctx, self.lead.part, self.lead)
             return
-        ctx.prims.unclamp('front', partial=True)
+        ctx.prims.unclamp(self.lead.part, partial=True)
         if ctx.guards.row('turn').get('level_front'):
-            motions.level_front(ctx, self._target())
+            motions.level_front(ctx, self._target(), self.lead)
 
     def facts(self, ctx):
         found = self.steered is not None or (self.sensor is not None and self.sensor.sensed is not None)
@@ -347,124 +370,140 @@ class TakeJunction(Pab):
         if self.turning:
             motions.press_what_is_clamped(ctx)
 
-    def _bring_rear_and_record(self, ctx):
-        """:func:`~pirate.sequencer.pabs.turn_motions.bring_rear`, then the record that the rear came through."""
-        motions.bring_rear(ctx)
+    def _bring_trail_and_record(self, ctx):
+        """:func:`~pirate.sequencer.pabs.turn_motions.bring_trail`, then the record that the trailing part came
+        through."""
+        motions.bring_trail(ctx, self.lead)
         now = ctx.feed.latest().odometry
-        self.past = PastCorner('rear_through', now, now)
+        self.past = PastCorner('trail_through', now, now, self.lead.part)
 
     def _drive_in(self, ctx):
         """Drive on ``drive_in_mm`` so the rear module leaves the corner too;
         resumed in it (:attr:`carried`), only what is left of that drive,
         nothing when less than the drive's tolerance is."""
-        now = ctx.feed.latest().odometry
+        now, sign = ctx.feed.latest().odometry, self.lead.sign
         resumed = self.carried is not None and self.carried.fact == 'driving_in'
-        start, end = ((self.carried.from_mm, self.carried.to_mm) if resumed
-                      else (now, now + float(ctx.guards.row('turn')['drive_in_mm'])))
-        self.past = PastCorner('driving_in', start, end)
-        if end - now > float(ctx.guards.drive['tolerance']):
-            motions.drive_by(ctx, 'drive into the new pipe', end - now)
+        span = ((self.carried.from_mm, self.carried.to_mm) if resumed
+                else sorted((now, now + sign * float(ctx.guards.row('turn')['drive_in_mm']))))
+        end = span[1] if sign > 0 else span[0]          # the planned end, the way the lead goes
+        self.past = PastCorner('driving_in', span[0], span[1], self.lead.part)
+        if sign * (end - now) > float(ctx.guards.drive['tolerance']):
+            motions.drive_by(ctx, 'drive into the new pipe', sign * (end - now), lead=self.lead)
         # to where the wheels stopped: a few mm past the planned end (110 mm twin: +8)
-        self.past = PastCorner('driven_in', start, max(end, ctx.feed.latest().odometry))
+        stopped = ctx.feed.latest().odometry
+        self.past = PastCorner('driven_in', min(span[0], stopped), max(span[1], stopped), self.lead.part)
 
     def _search(self, ctx):
         """Drive until the junction is sensed, or JunctionMissing after the goal's distance."""
         row = ctx.guards.row('junction')
-        distance = ctx.goal.distance or float(row['search_mm'])
+        lead = self.lead
+        distance = abs(ctx.goal.distance) or float(row['search_mm'])
         start = ctx.feed.latest()
-        self.start_mm, self.sensor = start.odometry, JunctionSensor(ctx.guards, start)
+        self.start_mm, self.sensor = start.odometry, JunctionSensor(ctx.guards, start, lead.part)
         progress = Progress(ctx.guards.drive, start)
         speed = motions.search_speed(ctx.goal, ctx.guards)
-        ctx.prims.drive_at_velocity(speed)
+        ctx.prims.drive_at_velocity(lead.sign * speed)
         view = ctx.prims.wait_for(
             'look for the junction',
-            lambda v: progress.check(v) and (self.sensor.update(v) or v.odometry - self.start_mm >= distance),
-            'front V loses its wall, or odometry +%.0f mm' % distance, motions.time_bound(ctx, distance, speed))
+            lambda v: progress.check(v) and (self.sensor.update(v) or lead.along(v, start) >= distance),
+            '%s V loses its wall, or odometry %+.0f mm' % (lead.part, lead.sign * distance),
+            motions.time_bound(ctx, distance, speed))
         if self.sensor.sensed is None:
             self.junction_missing = True
-            raise JunctionMissing('no junction within %.0f mm (odometry %.0f mm from the start; the front V, its '
+            raise JunctionMissing('no junction within %.0f mm (odometry %+.0f mm from the start; the %s V, its '
                                   'apex toward the %s, kept its wall: a T-joint open another way is not sensed from '
                                   'this clamp, e.g. upright one open to a side, which a Drive passes)'
-                                  % (distance, view.odometry - self.start_mm, APEX_TOWARD[self._target()]))
+                                  % (distance, view.odometry - self.start_mm, lead.part,
+                                     APEX_TOWARD[self._target()]))
         self.junction_odometry = self.sensor.sensed.odometry - self.start_mm
 
-    def _steer_front(self, ctx):
-        """Drive with the front V open and its bends toward the turn side, the
-        front tilt keeping the front module pointed along the new pipe
-        (pi/2 - Bend I - Bend II), until Bend II says the front part has
-        turned into the new pipe (:meth:`_steer_until_round`). In a straight
-        pipe the walls keep Bend II far below ``steered_rad``: JunctionMissing
-        once the odometry is ``steer_beyond_mm`` past the goal's distance (the
-        front turns round the corner that far after it reaches the opening),
-        or after the steering's time bound."""
-        row, prims = ctx.guards.row('turn'), ctx.prims
-        distance = ctx.goal.distance or float(ctx.guards.row('junction')['search_mm'])
+    def _steer_lead(self, ctx):
+        """Drive with the leading V open and its bends toward the turn side
+        (the front leading: the front tilt keeping the front module pointed
+        along the new pipe, pi/2 - Bend I - Bend II), until the leading V's
+        inner bend says the leading part has turned into the new pipe
+        (:meth:`_steer_until_round`). In a straight pipe the walls keep it far
+        below ``steered_rad``: JunctionMissing once the odometry is
+        ``steer_beyond_mm`` past the goal's distance (the leading part turns
+        round the corner that far after it reaches the opening), or after the
+        steering's time bound."""
+        row, prims, lead = motions.turn_row(ctx.guards, self.lead), ctx.prims, self.lead
+        distance = abs(ctx.goal.distance) or float(ctx.guards.row('junction')['search_mm'])
         limit_s = (float(row['steer_base_s']) + float(row['steer_s_per_mm']) * distance) * motions.slower(ctx.goal, row)
         start = ctx.feed.latest()
         self.start_mm = start.odometry
-        motions.torque(prims, bend_i=int(row['steer_bend_i']), bend_ii=int(row['steer_bend_ii']))
+        motions.torque(prims, **{lead.outer: int(row['steer_bend_i']), lead.inner: int(row['steer_bend_ii'])})
         try:
-            view = self._steer_until_round(ctx, row, start.stamp + limit_s,
-                                           start.odometry + distance + float(row['steer_beyond_mm']))
+            view = self._steer_until_round(ctx, row, start, start.stamp + limit_s,
+                                           distance + float(row['steer_beyond_mm']))
         except TimedOut:
             view = None
         finally:
             prims.drive_at_velocity(0.0)
-            prims.move_module('front_tilt', 0)
+            if lead.part == 'front':
+                prims.move_module('front_tilt', 0)
         if view is None:
             self.junction_missing = True
             last = ctx.feed.latest()
             raise JunctionMissing('no opening toward the %s within %.0f mm (odometry %+.0f mm in %.0f s of steering; '
-                                  'the front did not turn%s)' % (
+                                  'the %s did not turn%s)' % (
                                       self.direction, distance, last.odometry - start.odometry,
-                                      last.stamp - start.stamp, motions.backed_off_text(self.backed_off)))
+                                      last.stamp - start.stamp, lead.part, motions.backed_off_text(self.backed_off)))
         self.steered = view
         self.junction_odometry = view.odometry - start.odometry
 
-    def _steer_until_round(self, ctx, row, end, last_mm):
-        """Steer on until the front is round the corner (the view then), or
-        None once the odometry passes ``last_mm``; TimedOut at robot time
-        ``end``. Wheels that stand ``back_off_after_s`` on end say the front
-        has met an edge it does not get past: the far edge of an opening it
+    def _steer_until_round(self, ctx, row, start, end, last_mm):
+        """Steer on until the leading part is round the corner (the view then),
+        or None once the odometry has gone ``last_mm`` from ``start`` the way it
+        leads; TimedOut at robot time ``end``. Wheels that stand
+        ``back_off_after_s`` on end say the leading part has met an edge it
+        does not get past: the far edge of an opening it
         did not drop into, or the end of the run it rode on past one. It
         backs off ``back_off_mm`` and steers on: the bends, still toward the
-        turn side, carry the front module further toward the opening while
+        turn side, carry the leading module further toward the opening while
         it backs, and it meets the edge again deeper in (twin, 110 mm T-joint
         entered through its run: the front stood 40 s at the opening's far
         edge, rode on past and stood at the run's end for the rest of the
         goal; backed off 40 mm after 8 s it turned into the branch:
         bench/pab_junction_sweep)."""
-        prims, speed = ctx.prims, motions.turn_speed(ctx.goal, row)
+        prims, speed, lead = ctx.prims, motions.turn_speed(ctx.goal, row), self.lead
         stand_s = float(row['back_off_after_s'])
         while True:
             standing = motions.Standing(stand_s)
-            prims.drive_at_velocity(speed)
-            view = prims.follow('steer front', lambda v: motions.tilt_along_the_turn(prims, row, v),
-                                lambda v: motions.steered(row, v) or standing.long(v) or v.odometry > last_mm,
-                                '%s (or the wheels standing %g s: back off; or odometry past %.0f mm)'
-                                % (motions.steered_text(row), stand_s, last_mm), motions.left_s(ctx, end))
-            if motions.steered(row, view):
+            prims.drive_at_velocity(lead.sign * speed)
+            view = prims.follow('steer %s' % lead.part, motions.steer_tilt(prims, row, lead),
+                                lambda v: (motions.steered(row, v, lead) or standing.long(v)
+                                           or lead.along(v, start) > last_mm),
+                                '%s (or the wheels standing %g s: back off; or odometry past %+.0f mm)'
+                                % (motions.steered_text(row, lead), stand_s, lead.sign * last_mm),
+                                motions.left_s(ctx, end))
+            if motions.steered(row, view, lead):
                 return view
-            if view.odometry > last_mm:
+            if lead.along(view, start) > last_mm:
                 return None
             self.backed_off += 1
-            motions.back_off(ctx, row, speed, end)
+            motions.back_off(ctx, row, speed, end, lead)
 
     def summary(self, ctx):
         if self.carried is not None:
-            return ('%s %s: resumed past the corner (%s), %d motion primitives, ended clamped'
-                    % (self.kind, self.direction, RESUMED_TEXT[self.carried.fact], len(ctx.prims.executed)))
+            return ('%s: resumed past the corner (%s), %d motion primitives, ended clamped'
+                    % (self._what(), RESUMED_TEXT[self.carried.fact], len(ctx.prims.executed)))
         if math.isnan(self.junction_odometry):
-            return ('%s %s: resumed where the robot stood in the corner, %d motion primitives, ended clamped'
-                    % (self.kind, self.direction, len(ctx.prims.executed)))
-        why = self.sensor.sensed.why if self.sensor is not None else 'the front turned into the new pipe'
+            return ('%s: resumed where the robot stood in the corner, %d motion primitives, ended clamped'
+                    % (self._what(), len(ctx.prims.executed)))
+        why = (self.sensor.sensed.why if self.sensor is not None
+               else 'the %s turned into the new pipe' % self.lead.part)
         why += motions.backed_off_text(self.backed_off)
-        return ('%s %s: junction sensed %.0f mm after the start (%s), %d motion primitives, ended clamped'
-                % (self.kind, self.direction, self.junction_odometry, why, len(ctx.prims.executed)))
+        return ('%s: junction sensed %+.0f mm after the start (%s), %d motion primitives, ended clamped'
+                % (self._what(), self.junction_odometry, why, len(ctx.prims.executed)))
+
+    def _what(self):
+        return '%s %s%s' % (self.kind, self.direction, ', rear first' if self.lead.part == 'rear' else '')
 
 
-def _taken_text():
-    return ', '.join('%s %s' % (kind, direction.upper()) for kind, direction in sorted(TAKEN))
+def _taken_text(rear_first=False):
+    return ', '.join('%s %s' % (kind, direction.upper())
+                     for kind, direction in sorted(TAKEN_REAR_FIRST if rear_first else TAKEN))
 
 
 def _turn_speed_problem(goal, guards):
