@@ -327,3 +327,28 @@ def test_a_route_through_a_bend_after_a_long_drive_and_past_a_side_tee_needs_no_
     assert robot_along_m(pipe_map, truth) - pipe_map.points['past_tee'] < 0.05
     rear_along_m = robot_along_m(pipe_map, truth) - SETTINGS['robot']['rear_mm'] / 1000.0
     assert rear_along_m > tee.exit_m, (rear_along_m, tee)
+
+
+def test_a_mission_there_and_back_through_a_bend_and_a_t_joint_ends_at_the_launch_pit():
+    """inspection_network_90 with a point past its T-joint: launch pit ->
+    past the T-joint -> launch pit. On the way in the mitre bend LEFT and the
+    T-joint (open upward) straight on front first; on the way back the
+    T-joint and the bend rear first (negative search distances), re-anchored
+    at each; the robot ends at the launch pit (ground truth within 100 mm:
+    the last drive is by odometry from where the bend taken rear first ends)."""
+    with open(network.world_path('inspection_network_90')) as stream:
+        layout = yaml.safe_load(stream)
+    pipe_map = network.build(dict(layout, points=layout['points'] + [{'name': 'past_tee', 'at_mm': 3200}]))
+    plan = planner.plan(pipe_map, ['launch_pit', 'past_tee', 'launch_pit'], SETTINGS, MAX_DRIVE_MM, None, True)
+    planner.check_runnable(plan)
+    with SimHarness(speedup=TEE_SPEEDUP, world='inspection_network_90', orientation=UPRIGHT, seed=11) as h:
+        robot, run = executive(plan, h, pipe_map.points['launch_pit'])
+        outcome = finished(run, *run_in_thread(run))
+        truth_m = robot_along_m(pipe_map, h.ground_truth())
+    assert outcome.status == 'succeeded', outcome.log
+    junction_goals = [(g.step.pab, g.step.option, g.step.distance_mm < 0) for g in robot.goals
+                      if g.step.junction is not None]
+    assert junction_goals == [('MITRE_BEND', 'LEFT', False), ('T_JOINT', 'STRAIGHT', False),
+                              ('T_JOINT', 'STRAIGHT', True), ('MITRE_BEND', 'LEFT', True)]
+    assert [f.junction for f in run.localiser.fixes] == ['tee_1', 'tee_1']
+    assert abs(truth_m - pipe_map.points['launch_pit']) < 0.1, truth_m

@@ -21,10 +21,12 @@ from pirate.sequencer.pabs.expr import (ALWAYS, all_of, any_of, definitions, equ
 FLAGS = (True, False)
 CLAMPS = (clamp.NONE, clamp.CUSTOM, clamp.FULL)
 
+JUNCTION_FACTS = [junction_table.Facts(*values)
+                  for values in itertools.product(FLAGS, repeat=len(junction_table.Facts._fields))]
 #: machine -> every combination of its facts.
 TABLES = {
-    'junction': (junction_table.MACHINE, [junction_table.Facts(*values) for values in itertools.product(
-        FLAGS, repeat=len(junction_table.Facts._fields))]),
+    'junction': (junction_table.MACHINES['front'], JUNCTION_FACTS),
+    'junction rear first': (junction_table.MACHINES['rear'], JUNCTION_FACTS),
     'clamp': (clamp.MACHINE, [clamp.Facts(*values) for values in itertools.product(
         FLAGS, FLAGS, FLAGS, CLAMPS, CLAMPS, (0, 1, 2), FLAGS)]),
     'home': (home.MACHINE, [home.Facts(*values) for values in itertools.product(FLAGS, repeat=3)]),

@@ -20,6 +20,7 @@ from pirate.state.feed import RobotView
 from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.pabs import PABS, codes
 from pirate.sequencer.pabs import junction as jn
+from pirate.sequencer.pabs import junction_table as table
 from pirate.sequencer.pabs.base import END, PabFailed
 from pirate.sequencer.server import PabContext
 from fakes import WithoutJunctionKey
@@ -35,46 +36,70 @@ def past_the_corner(f):
     return f.trail_through or f.driving_in or f.driven_in
 
 
-#: What each state's action guarantees about the facts read right after it.
-POSTCONDITION = {
+#: What each state's action guarantees about the facts read right after it, by
+#: the state's template (junction_table.STATES: the same whichever part leads).
+GUARANTEES = {
     # from its start, straight or within the nominal band (what check() always accepted); the resumes below
-    jn.CHANGE_MODES: lambda f: f.lead and f.trail and (f.straight or f.toward) and not in_a_corner(f)
+    table.CHANGE_MODES: lambda f: f.lead and f.trail and (f.straight or f.toward) and not in_a_corner(f)
     and not past_the_corner(f),
-    jn.RE_ADJUSTING: lambda f: f.lead and f.trail and f.straight and not in_a_corner(f)
+    table.RE_ADJUSTING: lambda f: f.lead and f.trail and f.straight and not in_a_corner(f)
     and not past_the_corner(f),      # Clamp Straight / Sideways ended straight, or raised
-    jn.SEARCHING: lambda f: f.found and not f.turn,  # else it raised JunctionMissing
-    jn.STOPPING: lambda f: f.found and not f.turn,
-    jn.LIFTING_FRONT: lambda f: f.turn and not f.found,
-    jn.UNCLAMPING_FRONT: lambda f: (f.found or f.turn) and not f.lead,
-    jn.CROSSING_FRONT: lambda f: f.found and not f.lead and not f.turn,
-    jn.STEERING_FRONT: lambda f: f.turn and f.found and not f.lead,    # else JunctionMissing
-    jn.CLAMPING_AT_CORNER: lambda f: f.turn and f.found,
-    jn.SWINGING_MIDDLE: lambda f: f.turn and f.found,
-    jn.BRINGING_REAR: lambda f: f.turn and f.found and not f.trail,
-    jn.CLAMPING_FRONT: lambda f: f.found and f.lead,
-    # lying on a side the rear crosses pressing lightly, so it may still read clamped
-    jn.UNCLAMPING_REAR: lambda f: f.found and f.lead and not f.turn,
-    jn.CROSSING_REAR: lambda f: f.found and f.lead and not f.turn,
-    jn.CLAMPING_REAR: lambda f: f.found and f.trail and (f.lead or f.turn),
-    jn.DRIVING_IN: lambda f: f.turn and f.found and f.lead and f.trail,
-    jn.STRAIGHTENING: lambda f: f.found and f.lead and f.trail and f.straight,
+    table.SEARCHING: lambda f: f.found and not f.turn,  # else it raised JunctionMissing
+    table.STOPPING: lambda f: f.found and not f.turn,
+    table.LIFTING_LEAD: lambda f: f.turn and not f.found,
+    table.UNCLAMPING_LEAD: lambda f: (f.found or f.turn) and not f.lead,
+    table.CROSSING_LEAD: lambda f: f.found and not f.lead and not f.turn,
+    table.STEERING_LEAD: lambda f: f.turn and f.found and not f.lead,    # else JunctionMissing
+    table.CLAMPING_LEAD_AT_CORNER: lambda f: f.turn and f.found,
+    table.SWINGING_MIDDLE: lambda f: f.turn and f.found,
+    table.BRINGING_TRAIL: lambda f: f.turn and f.found and not f.trail,
+    table.CLAMPING_LEAD: lambda f: f.found and f.lead,
+    # lying on a side the trailing part crosses pressing lightly, so it may still read clamped
+    table.UNCLAMPING_TRAIL: lambda f: f.found and f.lead and not f.turn,
+    table.CROSSING_TRAIL: lambda f: f.found and f.lead and not f.turn,
+    table.CLAMPING_TRAIL: lambda f: f.found and f.trail and (f.lead or f.turn),
+    table.DRIVING_IN: lambda f: f.turn and f.found and f.lead and f.trail,
+    table.STRAIGHTENING: lambda f: f.found and f.lead and f.trail and f.straight,
 }
+#: Each table's states -> their guarantee.
+POSTCONDITIONS = {lead: {table.state(template, lead): guarantee for template, guarantee in GUARANTEES.items()
+                         if template != table.LIFTING_LEAD or lead in table.TILTS}
+                  for lead in table.LEADS}
+POSTCONDITION = POSTCONDITIONS['front']
 
 
-def test_the_table_prints_every_transition():
-    table = jn.MACHINE.table()
-    assert table.splitlines()[0].split() == ['state', 'next', 'state', 'guard']
-    assert len(table.splitlines()) == len(jn.MACHINE.transitions) + 1
-    assert set(jn.MACHINE.states) == set(POSTCONDITION) | {END}
+@pytest.mark.parametrize('lead', sorted(table.LEADS))
+def test_the_table_prints_every_transition(lead):
+    machine = table.MACHINES[lead]
+    printed = machine.table()
+    assert printed.splitlines()[0].split() == ['state', 'next', 'state', 'guard']
+    assert len(printed.splitlines()) == len(machine.transitions) + 1
+    assert set(machine.states) == set(POSTCONDITIONS[lead]) | {END}
 
 
-@pytest.mark.parametrize('state', sorted(POSTCONDITION))
-def test_at_most_one_transition_and_one_where_the_action_succeeded(state):
+@pytest.mark.parametrize('lead, state', [(lead, state) for lead in sorted(table.LEADS)
+                                         for state in sorted(POSTCONDITIONS[lead])])
+def test_at_most_one_transition_and_one_where_the_action_succeeded(lead, state):
+    machine = table.MACHINES[lead]
     for facts in ALL_FACTS:
-        fired = [t for t in jn.MACHINE.exits(state) if t.guard.test(facts)]
+        fired = [t for t in machine.exits(state) if t.guard.test(facts)]
         assert len(fired) <= 1, (state, facts)
-        if POSTCONDITION[state](facts):
+        if POSTCONDITIONS[lead][state](facts):
             assert len(fired) == 1, (state, facts)
+
+
+def test_the_rear_first_table_is_the_front_first_one_with_the_parts_swapped():
+    """The same rows, guards tested alike, exhaustively; the states named
+    for the part that leads; no lifting where the leading module has no tilt."""
+    front, rear = table.MACHINES['front'], table.MACHINES['rear']
+    renamed = {table.state(t, 'front'): table.state(t, 'rear') for t in table.STATES}
+    opened = lambda target: table.UNCLAMPING_FRONT if target == table.LIFTING_FRONT else target  # noqa: E731
+    rows = [(renamed[t.source], renamed.get(opened(t.target), t.target), t.guard) for t in front.transitions
+            if t.source != table.LIFTING_FRONT]
+    assert [(s, d) for s, d, _ in rows] == [(t.source, t.target) for t in rear.transitions]
+    for (_, _, guard), t in zip(rows, rear.transitions):
+        assert all(guard.test(facts) == t.guard.test(facts) for facts in ALL_FACTS), t
+    assert 'front clamped' in rear.transitions[1].guard.text and 'rear clamped' in rear.transitions[1].guard.text
 
 
 def test_a_clamp_that_does_not_hold_ends_the_pab():

@@ -401,33 +401,52 @@ def test_the_way_back_through_a_junction_runs_where_the_pab_takes_it_rear_first(
     assert goals.built('MITRE_BEND', 'LEFT', rear_first=True) and goals.built('DRIVE', rear_first=True)
     planner.check_runnable(round_trip)
     with pytest.raises(planner.PlanError, match=r"step 6 \(MITRE_BEND LEFT, mitre_1\): the Pirate Server cannot take "
-                                                r"MITRE_BEND LEFT rear first yet; the robot cannot take this route "
-                                                r"back through mitre_1"):
+                                                r"MITRE_BEND LEFT rear first yet \(not built\); the robot cannot "
+                                                r"take this route back through mitre_1"):
         planner.check_runnable(round_trip, built=lambda pab, option=None, rear_first=False: not rear_first)
 
 
-@pytest.mark.parametrize('pieces', [
-    BEND_LEFT,
-    [{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'branch', 'side': 'right'},
-     {'type': 'straight', 'length_mm': 1500}],
-    [{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': 'left', 'leave': 'branch'},
-     {'type': 'straight', 'length_mm': 1500}],
-    [{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': 'up'},
-     {'type': 'straight', 'length_mm': 1500}]])
-@pytest.mark.parametrize('diameter', [90, 110])
-def test_every_route_back_through_a_junction_taken_in_is_planned_and_runnable(pieces, diameter):
-    """There and back through each junction the PAB takes: each junction step
-    on the way back searches backwards (negative distance) in the direction
-    it was taken in, from the clamp the way in left, and the server runs it."""
+TEE_BRANCH = [{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'branch', 'side': 'right'},
+              {'type': 'straight', 'length_mm': 1500}]
+TEE_RUN_BRANCH = [{'type': 'straight', 'length_mm': 1500},
+                  {'type': 'tee', 'enter': 'run', 'side': 'left', 'leave': 'branch'},
+                  {'type': 'straight', 'length_mm': 1500}]
+TEE_RUN_UP = [{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': 'up'},
+              {'type': 'straight', 'length_mm': 1500}]
+
+
+def there_and_back(pieces, diameter):
     length = sum(p.get('length_mm', 0) for p in pieces) + diameter
-    net = world(pieces, {'pit': 300, 'target': length - 500}, diameter=diameter)
-    round_trip = run(net, 'pit', 'target', 'pit')
-    taken = [s for s in round_trip.steps if s.junction is not None]
-    assert len(taken) == 2
-    there, back = taken
+    return run(world(pieces, {'pit': 300, 'target': length - 500}, diameter=diameter), 'pit', 'target', 'pit')
+
+
+@pytest.mark.parametrize('pieces', [BEND_LEFT, TEE_BRANCH, TEE_RUN_BRANCH, TEE_RUN_UP])
+@pytest.mark.parametrize('diameter', [90, 110])
+def test_every_route_back_through_a_junction_taken_in_is_planned(pieces, diameter):
+    """There and back through each junction the PAB takes: the junction step
+    on the way back searches backwards (negative distance) in the direction
+    it was taken in, and the route ends where it began."""
+    round_trip = there_and_back(pieces, diameter)
+    there, back = [s for s in round_trip.steps if s.junction is not None]
     assert there.distance_mm > 0 > back.distance_mm and (there.pab, there.option) == (back.pab, back.option)
-    planner.check_runnable(round_trip)
+    assert back.note.endswith('rear first')
     assert round_trip.steps[-1].end_m == pytest.approx(0.3)
+
+
+@pytest.mark.parametrize('diameter', [90, 110])
+def test_the_way_back_through_a_bend_and_straight_on_through_a_tee_runs(diameter):
+    for pieces in (BEND_LEFT, TEE_RUN_UP):
+        planner.check_runnable(there_and_back(pieces, diameter))
+
+
+@pytest.mark.parametrize('pieces', [TEE_BRANCH, TEE_RUN_BRANCH])
+def test_the_way_back_round_a_t_joint_is_refused_with_why_the_rear_cannot_steer_into_it(pieces):
+    """The rear module has no tilt: backing through a T-joint nothing turns
+    it into the opening (twin), so that route back is refused before anything moves."""
+    with pytest.raises(planner.PlanError, match=r"cannot take T_JOINT (LEFT|RIGHT) rear first yet \(the rear module "
+                                                r"has no tilt.*back through tee_1"):
+        planner.check_runnable(there_and_back(pieces, 90))
+    planner.check_runnable(run(world(pieces, {'a': 300, 'b': 2600}), 'a', 'b'))
 
 
 def test_a_junction_direction_the_goal_cannot_carry_is_refused(monkeypatch):

@@ -31,6 +31,7 @@ import collections
 from pirate.sequencer import goals
 from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.junctions import STRAIGHT_CLAMP, driven_past, is_turn, label, required_clamp
+from pirate.sequencer.pabs.junction import not_taken_why
 from pirate.world.network import turns_at_corner
 
 #: One junction of the map, as the route meets it. ``from_run``: a T-joint
@@ -264,8 +265,11 @@ def check_runnable(route_plan, built=None, book=None):
             raise PlanError('%s: the Pirate Server cannot run %s%s yet; the robot cannot take this route'
                             % (where, step.pab, ' %s' % step.option if step.option else ''))
         if _rear_first(step) and not built(step.pab, step.option or None, rear_first=True):
-            raise PlanError('%s: the Pirate Server cannot take %s %s rear first yet; the robot cannot take '
-                            'this route back through %s' % (where, step.pab, step.option, step.junction.name))
+            raise PlanError('%s: the Pirate Server cannot take %s %s rear first yet (%s); the robot cannot take '
+                            'this route back through %s' % (where, step.pab, step.option,
+                                                            not_taken_why(step.junction.kind,
+                                                                          step.junction.direction, True),
+                                                            step.junction.name))
         _check_start_clamp(where, step, book)
 
 

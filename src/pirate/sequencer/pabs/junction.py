@@ -67,7 +67,16 @@ TAKEN = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right'), ('tee', 'le
 #: (kind, direction) it takes rear first too: a goal with a negative search
 #: distance, the robot driving backwards out of the network with the rear
 #: part leading (the same table, :func:`pirate.sequencer.pabs.junction_table.machine`).
-TAKEN_REAR_FIRST = TAKEN
+TAKEN_REAR_FIRST = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right')}
+#: Why a direction taken front first is not taken rear first (twin, 90 mm,
+#: from where the front-first turn leaves the robot; measurements.md#turn-rear-first).
+NOT_TAKEN_REAR_FIRST = {
+    ('tee', 'left'): 'the rear module has no tilt and is not actuated (report 2.4.1.2), so nothing points the '
+                     "rear into a T-joint's opening: backing along the run past the branch it rode on into the open "
+                     'run (1200 mm of odometry, the rear never turned), backing out of the branch it stood at the '
+                     "run's far wall (10 back-offs in 165 s); a mitre bend's far wall turns it by itself",
+}
+NOT_TAKEN_REAR_FIRST[('tee', 'right')] = NOT_TAKEN_REAR_FIRST[('tee', 'left')]
 #: Why a direction of a junction kind is not taken (tried in the twin; what a
 #: clamp holds in a steep pipe: bench/vertical_hold).
 NOT_TAKEN = {
@@ -193,9 +202,10 @@ class TakeJunction(Pab):
                                                  codes.OPTION_NAMES.get(goal.option, goal.option))
         rear_first = self.lead.part == 'rear'
         if not self.takes(goal.name, goal.option, rear_first):
-            return ('%s %s%s is not yet taken by this PAB (%s; taken today: %s)'
+            return ('%s %s%s is not yet taken by this PAB (%s; taken today%s: %s)'
                     % (self.label, self.direction.upper(), ' rear first' if rear_first else '',
-                       NOT_TAKEN.get(self.direction, 'not measured in the twin'), _taken_text(rear_first)))
+                       not_taken_why(self.kind, self.direction, rear_first), ' rear first' if rear_first else '',
+                       _taken_text(rear_first)))
         if not guards.has('junction'):
             return 'no junction guards for a %d mm pipe' % guards.pipe_diameter
         if self.turning and not guards.has('turn'):
@@ -499,6 +509,13 @@ class TakeJunction(Pab):
 
     def _what(self):
         return '%s %s%s' % (self.kind, self.direction, ', rear first' if self.lead.part == 'rear' else '')
+
+
+def not_taken_why(kind, direction, rear_first=False):
+    """Why the PAB does not take ``kind`` (mitre / tee) ``direction`` (rear first when ``rear_first``)."""
+    if rear_first and (kind, direction) in NOT_TAKEN_REAR_FIRST:
+        return NOT_TAKEN_REAR_FIRST[(kind, direction)]
+    return NOT_TAKEN.get(direction, 'not built')
 
 
 def _taken_text(rear_first=False):
