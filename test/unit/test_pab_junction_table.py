@@ -133,7 +133,8 @@ def test_a_turn_steers_the_front_in_brings_the_rear_and_straightens():
     the rear part through, then the robot clamped in the new pipe."""
     facts = jn.Facts(found=False, lead=True, trail=True, straight=True, turn=True)
     after = {jn.UNCLAMPING_FRONT: dict(lead=False), jn.STEERING_FRONT: dict(found=True),
-             jn.BRINGING_REAR: dict(trail=False), jn.CLAMPING_REAR: dict(trail=True), jn.CLAMPING_FRONT: dict(lead=True)}
+             jn.BRINGING_REAR: dict(trail=False), jn.CLAMPING_REAR: dict(trail=True),
+             jn.CLAMPING_FRONT: dict(lead=True)}
     state, walked = jn.MACHINE.initial, []
     while state != END:
         walked.append(state)
@@ -159,6 +160,9 @@ def test_a_junction_from_a_clamp_rolled_out_of_straight_re_adjusts_it_first(turn
 Goal = collections.namedtuple('Goal', 'name option distance speed pipe_diameter')
 CLAMPED = dict(bend_i=-1.0, bend_ii=0.5, bend_iii=0.5, bend_iv=-1.0, rotation=0.0, front_tilt=0.44)   # 90 mm, twin
 ON_WALL = dict(bend_i=241.0, bend_iv=241.0)
+
+
+SIDEWAYS_LEFT = dict(CLAMPED, bend_i=-0.65, bend_ii=0.33, bend_iii=0.33, bend_iv=-0.65)
 
 
 def view(orientation=math.pi / 2, angles=CLAMPED, efforts=ON_WALL):
@@ -195,6 +199,33 @@ def test_every_direction_a_junction_can_have_is_taken_or_says_why_not():
     for kind, _, _, options in jn.JUNCTIONS.values():
         for direction, _ in options.values():
             assert (kind, direction) in jn.TAKEN or direction in jn.NOT_TAKEN, (kind, direction)
+
+
+def test_every_direction_taken_front_first_is_taken_rear_first_or_says_why_not():
+    for kind, direction in jn.TAKEN:
+        assert (kind, direction) in jn.TAKEN_REAR_FIRST or (kind, direction) in jn.NOT_TAKEN_REAR_FIRST
+    assert jn.TAKEN_REAR_FIRST <= jn.TAKEN
+
+
+@pytest.mark.parametrize('name, option, orientation, angles', [
+    (codes.MITRE_BEND, codes.LEFT, math.pi, SIDEWAYS_LEFT), (codes.MITRE_BEND, codes.RIGHT, 0.0, SIDEWAYS_LEFT),
+    (codes.T_JOINT, codes.STRAIGHT, math.pi / 2, CLAMPED)])
+def test_a_junction_taken_rear_first_is_accepted_from_the_clamp_the_way_in_left(name, option, orientation, angles):
+    """A negative search distance: the rear leads, from the same clamp as front first (90 mm)."""
+    mm = 90
+    robot = view(orientation, angles=angles)
+    assert check(name, option, distance=-800.0, robot=robot, mm=mm) is None
+    pab = PABS[name][1].for_goal(Goal(name, option, -800.0, 0.0, mm))
+    assert pab.lead.part == 'rear' and pab.machine is table.MACHINES['rear']
+    first = table.first_step(pab.sensed_facts(BOOK.for_diameter(mm), robot), 'rear')
+    assert first == (table.state(table.UNCLAMPING_LEAD, 'rear') if option != codes.STRAIGHT else jn.SEARCHING)
+
+
+@pytest.mark.parametrize('option, orientation', [(codes.LEFT, math.pi), (codes.RIGHT, 0.0)])
+def test_a_t_joint_turn_rear_first_is_refused_with_why(option, orientation):
+    reason = check(codes.T_JOINT, option, distance=-800.0, robot=view(orientation, angles=SIDEWAYS_LEFT))
+    assert 'rear first is not yet taken by this PAB' in reason and 'the rear module has no tilt' in reason
+    assert check(codes.T_JOINT, option, distance=800.0, robot=view(orientation, angles=SIDEWAYS_LEFT)) is None
 
 
 @pytest.mark.parametrize('name', [codes.MITRE_BEND, codes.T_JOINT])
@@ -320,7 +351,6 @@ def test_straight_on_from_a_clamp_a_drive_rolled_re_adjusts_it_within_the_nomina
         assert reason is None and first_step(codes.T_JOINT, codes.STRAIGHT, robot) == first
 
 
-SIDEWAYS_LEFT = dict(CLAMPED, bend_i=-0.65, bend_ii=0.33, bend_iii=0.33, bend_iv=-0.65)
 SIDEWAYS = {90: SIDEWAYS_LEFT, 110: dict(CLAMPED, bend_i=-0.9, bend_ii=0.45, bend_iii=0.45, bend_iv=-0.9)}
 
 

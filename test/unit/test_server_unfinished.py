@@ -79,8 +79,8 @@ def test_a_restarted_server_takes_back_the_record_and_the_same_goal_goes_on_from
     kept = []
     first = server(kept.append)
     assert run(first, leaves).status == ABORTED
-    assert kept == [{'goal': [CODE, codes.LEFT, 90], 'record': {'fact': 'driving_in', 'from_mm': 1182.0,
-                                                                 'to_mm': 1332.0, 'lead': 'front'}}]
+    record = {'fact': 'driving_in', 'from_mm': 1182.0, 'to_mm': 1332.0, 'lead': 'front'}
+    assert kept == [{'goal': [CODE, codes.LEFT, 90], 'record': record}]
     kept_after_restart = []
     second = server(kept_after_restart.append)
     assert second.restore_unfinished(kept[-1]) is None

@@ -76,8 +76,11 @@ def driven_past(kind, direction, open_side):
     the Drive is the simpler way. Nothing is sensed on the way, so no junction
     anchors the odometry there. Twin: bench/tee_drive_past. A
     tee open downward is not driven past: lying on a side the drive stalled
-    over the hole (twin, 90 mm, both sides), and upright too, at 232 mm in
-    9 of 10 runs (twin)."""
+    over the hole (twin, 90 mm, both sides), and upright too: from start rolls
+    70-110 deg, 6 of 9 Drives did not get past (4 stalled at 233 mm of
+    odometry, the front wheels over the hole; 2 stood short at 508 mm); the
+    3 that did were at 100 mm/s from within 10 deg of upright (none at 50
+    mm/s), too narrow a band to plan on (twin, 90 mm, tee_run_down_90)."""
     return kind == 'tee' and direction == 'straight' and open_side in DRIVEN_PAST_OPEN
 
 

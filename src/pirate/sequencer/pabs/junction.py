@@ -69,7 +69,7 @@ TAKEN = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right'), ('tee', 'le
 #: part leading (the same table, :func:`pirate.sequencer.pabs.junction_table.machine`).
 TAKEN_REAR_FIRST = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right')}
 #: Why a direction taken front first is not taken rear first (twin, 90 mm,
-#: from where the front-first turn leaves the robot; measurements.md#turn-rear-first).
+#: from where the front-first turn leaves the robot; doc/sequencer.md, Rear first).
 NOT_TAKEN_REAR_FIRST = {
     ('tee', 'left'): 'the rear module has no tilt and is not actuated (report 2.4.1.2), so nothing points the '
                      "rear into a T-joint's opening: backing along the run past the branch it rode on into the open "

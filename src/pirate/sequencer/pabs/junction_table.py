@@ -178,12 +178,15 @@ MACHINES = {lead: machine(lead) for lead in LEADS}
 MACHINE = MACHINES['front']
 
 # The front-first states by name (the rear-first ones: state(template, 'rear')).
-UNCLAMPING_FRONT, CROSSING_FRONT, CLAMPING_FRONT = (state(t, 'front') for t in (UNCLAMPING_LEAD, CROSSING_LEAD,
-                                                                                 CLAMPING_LEAD))
-UNCLAMPING_REAR, CROSSING_REAR, CLAMPING_REAR = (state(t, 'front') for t in (UNCLAMPING_TRAIL, CROSSING_TRAIL,
-                                                                              CLAMPING_TRAIL))
-LIFTING_FRONT, STEERING_FRONT, BRINGING_REAR = (state(t, 'front') for t in (LIFTING_LEAD, STEERING_LEAD,
-                                                                             BRINGING_TRAIL))
+UNCLAMPING_FRONT = state(UNCLAMPING_LEAD, 'front')
+CROSSING_FRONT = state(CROSSING_LEAD, 'front')
+CLAMPING_FRONT = state(CLAMPING_LEAD, 'front')
+UNCLAMPING_REAR = state(UNCLAMPING_TRAIL, 'front')
+CROSSING_REAR = state(CROSSING_TRAIL, 'front')
+CLAMPING_REAR = state(CLAMPING_TRAIL, 'front')
+LIFTING_FRONT = state(LIFTING_LEAD, 'front')
+STEERING_FRONT = state(STEERING_LEAD, 'front')
+BRINGING_REAR = state(BRINGING_TRAIL, 'front')
 CLAMPING_AT_CORNER = state(CLAMPING_LEAD_AT_CORNER, 'front')
 
 

@@ -418,4 +418,3 @@ def bring_trail(ctx, lead=None):
         text = '%s >= %.2f (round the corner), then <= %.2f' % (bend, came_round, through)
     drive_until(ctx, 'bring the %s through' % lead.trail, lead.sign * float(row['pull_speed']), done, text,
                 float(row['timeout_s']))
-
