@@ -21,7 +21,10 @@ bench/mission_sweep runs the same over many start rolls with sensor noise.
   points) drives past it clamped straight, every module past it;
 - inspection_90 to past_tee: a mitre bend after a 1.5 m drive clamped
   sideways (which rolls the robot out of the straight band), then the
-  T-joint open to the right driven past, without a retry.
+  T-joint open to the right driven past, without a retry;
+- there and back: launch pit -> past the T-joint -> launch pit on
+  inspection_network_90, the T-joint and the bend taken rear first on the
+  way back, ends at the launch pit.
 """
 import math
 import re
@@ -350,5 +353,5 @@ def test_a_mission_there_and_back_through_a_bend_and_a_t_joint_ends_at_the_launc
                       if g.step.junction is not None]
     assert junction_goals == [('MITRE_BEND', 'LEFT', False), ('T_JOINT', 'STRAIGHT', False),
                               ('T_JOINT', 'STRAIGHT', True), ('MITRE_BEND', 'LEFT', True)]
-    assert [f.junction for f in run.localiser.fixes] == ['tee_1', 'tee_1']
+    assert [f.junction for f in run.localiser.fixes] == ['mitre_1', 'tee_1', 'tee_1', 'mitre_1']
     assert abs(truth_m - pipe_map.points['launch_pit']) < 0.1, truth_m

@@ -1,8 +1,12 @@
 """Take T-joint / Take mitre bend: the one table, and every refusal.
 
-- the table prints, every state is reachable, and exhaustively over its
+- the table, built for either leading part (front first, rear first),
+  prints, every state is reachable, and exhaustively over its
   facts at most one transition fires per state, exactly one when the
-  facts agree with what the state's action just did;
+  facts agree with what the state's action just did; the rear-first table
+  is the front-first one with the parts swapped;
+- a negative search distance takes a junction rear first from the clamp
+  the way in left, and a direction not taken rear first says why;
 - the facts of a T-joint taken straight on walk the report's steps;
 - each goal the PAB cannot run is refused at once with its reason;
 - a turn re-sent after a cancel resumes at the step that continues it from

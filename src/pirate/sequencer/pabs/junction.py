@@ -9,6 +9,11 @@ junction kinds and every direction; what differs is data: :data:`JUNCTIONS`
 :data:`TAKEN` (what is built) and the diameter's ``junction`` and ``turn``
 guard rows (config/guards_<mm>.yaml).
 
+Either part leads: the front (driving forwards, into the network) or,
+for a goal whose search distance is negative, the rear (driving backwards,
+the way the robot came): :attr:`TakeJunction.lead` picks the table built for
+it and the bends its motions read.
+
 The transition table: :mod:`pirate.sequencer.pabs.junction_table`; the
 motions of a turn: :mod:`pirate.sequencer.pabs.turn_motions`; the sensing
 straight on: :mod:`pirate.sequencer.junction_sensing`. The whole story,
@@ -117,8 +122,8 @@ SPEED_WHY = ("measured in the twin: faster, the rear's wheels pushed the front V
              'T-joint was clamped short of its corner or rolled off the side (110 mm)')
 
 
-#: What a resumed turn says it went on with, by the record's fact.
-RESUMED_TEXT = {'trail_through': 'clamping the trailing part that had come through',
+#: What a resumed turn says it went on with, by the record's fact ('{trail}': the trailing part).
+RESUMED_TEXT = {'trail_through': 'clamping the {trail} that had come through',
                 'driving_in': 'the drive into the new pipe',
                 'driven_in': 'straightening after the drive into the new pipe'}
 
@@ -497,7 +502,8 @@ class TakeJunction(Pab):
     def summary(self, ctx):
         if self.carried is not None:
             return ('%s: resumed past the corner (%s), %d motion primitives, ended clamped'
-                    % (self._what(), RESUMED_TEXT[self.carried.fact], len(ctx.prims.executed)))
+                    % (self._what(), RESUMED_TEXT[self.carried.fact].format(trail=self.lead.trail),
+                       len(ctx.prims.executed)))
         if math.isnan(self.junction_odometry):
             return ('%s: resumed where the robot stood in the corner, %d motion primitives, ended clamped'
                     % (self._what(), len(ctx.prims.executed)))
