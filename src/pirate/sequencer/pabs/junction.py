@@ -76,10 +76,11 @@ TAKEN_REAR_FIRST = {('tee', 'straight'), ('mitre', 'left'), ('mitre', 'right')}
 #: Why a direction taken front first is not taken rear first (twin, 90 mm,
 #: from where the front-first turn leaves the robot; doc/sequencer.md, Rear first).
 NOT_TAKEN_REAR_FIRST = {
-    ('tee', 'left'): 'the rear module has no tilt and is not actuated (report 2.4.1.2), so nothing points the '
-                     "rear into a T-joint's opening: backing along the run past the branch it rode on into the open "
-                     'run (1200 mm of odometry, the rear never turned), backing out of the branch it stood at the '
-                     "run's far wall (10 back-offs in 165 s); a mitre bend's far wall turns it by itself",
+    ('tee', 'left'): 'the rear module has no tilt and is not actuated (report 2.4.1.2), so only a wall turns the '
+                     "rear into a T-joint's opening: backing along the run past the branch nothing does and it rode "
+                     'on into the open run (1200 mm of odometry, the rear never turned); backing out of the branch '
+                     "into the run the run's far wall turned it in 3 of 4 tries (90 mm right: it went into the "
+                     "run's open side), too few to take it; a mitre bend's far wall turns it every time",
 }
 NOT_TAKEN_REAR_FIRST[('tee', 'right')] = NOT_TAKEN_REAR_FIRST[('tee', 'left')]
 #: Why a direction of a junction kind is not taken (tried in the twin; what a
