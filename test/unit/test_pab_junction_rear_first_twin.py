@@ -24,7 +24,7 @@ import pytest
 import yaml
 
 from pirate.sequencer.pabs import codes
-from pirate.sim.harness import SimHarness
+from pirate.testing.harness import SimHarness
 from pirate.world import network
 from test_pab_junction_twin import APEX_WHEELS, JOINT_BODIES, SIDES, TURN_SPEEDUP, clamped_sideways
 from test_sequencer_sim import assert_ended, run_bounded
