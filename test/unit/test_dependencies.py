@@ -9,9 +9,11 @@ ros-*-msgs packages hold only the .msg files, the Python modules come in
 python3-*-msgs; and `rosrun` is in rosbash, which nothing else pulls in).
 """
 import functools
+import importlib.util
 import os
 import re
 import sys
+import sysconfig
 import xml.etree.ElementTree as ElementTree
 
 ROOT = os.path.join(os.path.dirname(__file__), '..', '..')
@@ -29,6 +31,7 @@ MODULES = {
     'pygame': 'python3-pygame', 'numpy': 'python3-numpy', 'matplotlib': 'python3-matplotlib',
     'PIL': 'python3-pil', 'hypothesis': 'python3-hypothesis', 'pytest': 'python3-pytest',
     'diagnostic_updater': 'python3-diagnostic-updater', 'dynamic_reconfigure': 'python3-dynamic-reconfigure',
+    'rosdep2': 'python3-rosdep2', 'setuptools': 'python3-setuptools',
     'distributed': 'python3-distributed',
     'cv2': 'python3-opencv',
 }
@@ -67,9 +70,24 @@ def _imported():
     return {a or b for text in _python_sources().values() for a, b in TOP_IMPORT.findall(text)}
 
 
+def _is_standard_library(module):
+    """Whether the running interpreter's standard library holds ``module``
+    (a top-level name; found where it lies, so on Python 3.8 too)."""
+    if module in sys.builtin_module_names:
+        return True
+    spec = importlib.util.find_spec(module)
+    if spec is None or spec.origin is None:
+        return False
+    if spec.origin in ('built-in', 'frozen'):
+        return True
+    stdlib = os.path.realpath(sysconfig.get_paths()['stdlib'])
+    path = os.path.realpath(spec.origin)
+    return path.startswith(stdlib + os.sep) and not {'site-packages', 'dist-packages'} & set(path.split(os.sep))
+
+
 def _third_party():
     local = {'pirate'} | {os.path.splitext(os.path.basename(p))[0] for p in _python_sources()}
-    return _imported() - local - set(sys.stdlib_module_names)
+    return {m for m in _imported() - local if not _is_standard_library(m)}
 
 
 def _message_packages():

@@ -29,7 +29,7 @@ def test_a_pab_without_a_button_is_named():
 def test_the_panel_draws_the_list():
     os.environ.setdefault('SDL_VIDEODRIVER', 'dummy')
     panel = virtual.VirtualPanel()
-    surface = pygame.Surface((virtual.WIDTH, virtual.HEIGHT))
+    surface = pygame.Surface((virtual.WIDTH, virtual.HEIGHT), 0, virtual.DEPTH_BITS)
     panel.draw(surface)
     blank = pygame.image.tostring(surface, 'RGB')
     panel.pab_list = config.pab_buttons(CFG)

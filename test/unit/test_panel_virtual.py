@@ -4,7 +4,6 @@ import os
 import shutil
 import subprocess
 import sys
-import time
 
 os.environ.setdefault('SDL_VIDEODRIVER', 'dummy')
 os.environ.setdefault('PYGAME_HIDE_SUPPORT_PROMPT', '1')
@@ -54,6 +53,20 @@ def test_dragging_a_slider_sends_its_values(panel):
     assert panel.handle_event(pygame.event.Event(pygame.MOUSEMOTION, pos=rect.center, rel=(0, 1), buttons=(0, 0, 0))) == []
 
 
+def test_the_wheel_over_a_slider_or_knob_nudges_it_and_not_a_button(panel):
+    """The wheel arrives as mouse buttons 4 (up) and 5 (down): so on
+    pygame 1.9.6, and pygame 2 sends them beside its MOUSEWHEEL."""
+    wheel = lambda button, pos: panel.handle_event(pygame.event.Event(pygame.MOUSEBUTTONDOWN, button=button, pos=pos))
+    slider, knob = panel.control(4).rect.center, panel.control(20).rect.center
+    start = panel.values[4]
+    assert wheel(4, slider) == [(4, start + 2)]
+    assert wheel(5, slider) == [(4, start)]
+    assert wheel(4, knob) == [(20, 2)]
+    assert wheel(5, knob) == [(20, 0)]
+    assert wheel(4, panel.control(41).rect.center) == []
+    assert panel.handle_event(pygame.event.Event(pygame.MOUSEBUTTONUP, button=4, pos=slider)) == []
+
+
 def test_keyboard_selects_a_strip_and_moves_its_controls(panel):
     key = lambda k, t=pygame.KEYDOWN: panel.handle_event(pygame.event.Event(t, key=k, mod=0, unicode=''))
     key(pygame.K_5)
@@ -67,7 +80,7 @@ def test_keyboard_selects_a_strip_and_moves_its_controls(panel):
 
 
 def test_led_message_changes_what_is_drawn(panel):
-    surface = pygame.Surface((virtual.WIDTH, virtual.HEIGHT))
+    surface = pygame.Surface((virtual.WIDTH, virtual.HEIGHT), 0, virtual.DEPTH_BITS)
     point = panel.control(43).rect.move(3, 3).topleft
     panel.draw(surface)
     assert tuple(surface.get_at(point))[:3] == virtual.BUTTON_OFF
@@ -82,7 +95,7 @@ import os, sys
 import pygame
 from pirate.panel import virtual
 pygame.display.init()
-screen = pygame.display.set_mode((virtual.WIDTH, virtual.HEIGHT))
+screen = pygame.display.set_mode((virtual.WIDTH, virtual.HEIGHT), 0, virtual.DEPTH_BITS)
 print(pygame.display.get_driver())
 panel = virtual.VirtualPanel()
 for button in (41, 43, 36, 59):
@@ -95,13 +108,6 @@ pygame.image.save(screen, sys.argv[1])
 '''
 
 
-def _free_display():
-    for n in range(90, 140):
-        if not os.path.exists('/tmp/.X11-unix/X%d' % n) and not os.path.exists('/tmp/.X%d-lock' % n):
-            return n
-    raise RuntimeError('no free X display number')
-
-
 @pytest.mark.skipif(shutil.which('Xvfb') is None, reason='Xvfb is not installed')
 def test_screenshot_under_xvfb_shows_the_panel():
     out_dir = os.path.join(ROOT, 'test-results')
@@ -109,15 +115,17 @@ def test_screenshot_under_xvfb_shows_the_panel():
     path = os.path.join(out_dir, 'virtual_panel.png')
     if os.path.exists(path):
         os.remove(path)
-    display = _free_display()
-    xvfb = subprocess.Popen(['Xvfb', ':%d' % display, '-screen', '0', '1024x768x24', '-nolisten', 'tcp'],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    # Xvfb picks a free display and writes its number to the pipe once it
+    # accepts clients (its socket file appears earlier: SDL 1.2 came too soon).
+    ready, write_end = os.pipe()
+    xvfb = subprocess.Popen(['Xvfb', '-displayfd', str(write_end), '-screen', '0', '1024x768x24', '-nolisten', 'tcp'],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, pass_fds=(write_end,))
+    os.close(write_end)
     try:
-        deadline = time.monotonic() + 10
-        while not os.path.exists('/tmp/.X11-unix/X%d' % display):
-            assert xvfb.poll() is None and time.monotonic() < deadline, 'Xvfb did not start'
-            time.sleep(0.05)
-        env = dict(os.environ, DISPLAY=':%d' % display, SDL_VIDEODRIVER='x11')
+        with os.fdopen(ready) as numbers:
+            display = numbers.readline().strip()
+        assert display, 'Xvfb did not start'
+        env = dict(os.environ, DISPLAY=':%s' % display, SDL_VIDEODRIVER='x11')
         run = subprocess.run([sys.executable, '-c', SHOT, path], env=env, timeout=30,
                              capture_output=True, text=True)
         assert run.returncode == 0, run.stderr
@@ -177,7 +185,7 @@ def test_mission_line_names_the_mission_and_the_steps_option(panel):
 
 def _label_pixels(panel, channel):
     """The pixels of the label drawn under a small button."""
-    surface = pygame.Surface((virtual.WIDTH, virtual.HEIGHT))
+    surface = pygame.Surface((virtual.WIDTH, virtual.HEIGHT), 0, virtual.DEPTH_BITS)
     panel.draw(surface)
     rect = panel.control(channel).rect
     area = pygame.Rect(rect.centerx - 30, rect.bottom + 2, 60, 14)

@@ -107,7 +107,7 @@ def test_frame_still_arriving_hides_the_bytes_inside_it():
 
 
 @settings(max_examples=800, deadline=None)
-@given(frames_st, st.randoms(use_true_random=False), st.integers(1, 6),
+@given(frames_st, st.randoms(), st.integers(1, 6),
        st.lists(st.integers(0, 400), max_size=6))
 def test_mutated_frames_match_oracle(frames, rng, count, cuts):
     stream = mutate(b''.join(protocol.encode(t, p) for t, p in frames), rng, count)

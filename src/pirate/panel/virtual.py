@@ -50,6 +50,14 @@ STRIP_W = 64      # px between two channel strips
 BODY, PANEL_EDGE, TEXT = (38, 38, 42), (90, 90, 96), (225, 225, 225)
 BUTTON_OFF, BUTTON_LIT, SLOT, THUMB = (70, 70, 76), (235, 40, 40), (15, 15, 15), (200, 200, 205)
 KNOB, KNOB_MARK = (120, 120, 128), (250, 250, 250)
+#: Colour depth of the panel's surfaces: true colour on every display
+#: (pygame 1.9.6 with no display, SDL's dummy driver, gives 8 bits).
+DEPTH_BITS = 32
+#: Rounded button corners where pygame draws them (2.0 on; 1.9.6 draws square).
+ROUNDED = {'border_radius': 4} if pygame.version.vernum[0] >= 2 else {}
+#: Mouse buttons the wheel arrives as (pygame 1.9.6 only so; 2.x also so):
+#: button -> steps up.
+WHEEL_BUTTONS = {4: 1, 5: -1}
 
 #: Where the PAB buttons are listed (screen px): under the transport buttons.
 PAB_LIST_X, PAB_LIST_Y, PAB_LIST_COLUMN_W = 14, STATUS_H + 188, 212
@@ -130,10 +138,10 @@ class VirtualPanel(object):
             return []
         if event.type == pygame.MOUSEMOTION and self._dragging is not None:
             return self._drag_to(self._dragging, event.pos)
-        if event.type == pygame.MOUSEWHEEL:
-            control = self.hit(pygame.mouse.get_pos())
+        if event.type == pygame.MOUSEBUTTONDOWN and event.button in WHEEL_BUTTONS:
+            control = self.hit(event.pos)
             if control is not None and control.kind != 'button':
-                return self._set(control.channel, self.values[control.channel] + 2 * event.y)
+                return self._set(control.channel, self.values[control.channel] + 2 * WHEEL_BUTTONS[event.button])
             return []
         if event.type in (pygame.KEYDOWN, pygame.KEYUP):
             return self._key(event)
@@ -259,7 +267,7 @@ class VirtualPanel(object):
 
     def _draw_button(self, surface, control):
         colour = BUTTON_LIT if self.leds.get(control.channel) else BUTTON_OFF
-        pygame.draw.rect(surface, colour, control.rect, border_radius=4)
+        pygame.draw.rect(surface, colour, control.rect, **ROUNDED)
         if control.rect.width > 30:
             self._label(surface, self.label(control), control.rect.center)
         else:

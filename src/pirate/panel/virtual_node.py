@@ -150,7 +150,7 @@ class VirtualPanelNode(object):
     def run(self):
         pygame.display.init()
         try:
-            screen = pygame.display.set_mode((virtual.WIDTH, virtual.HEIGHT))
+            screen = pygame.display.set_mode((virtual.WIDTH, virtual.HEIGHT), 0, virtual.DEPTH_BITS)
         except pygame.error as err:
             rospy.logfatal('virtual panel: cannot open a window (%s); set DISPLAY, or '
                            'SDL_VIDEODRIVER=dummy to run headless', err)

@@ -84,9 +84,11 @@ def model_xml(world, config, roll):
     option = ET.SubElement(root, 'option', timestep='%g' % config['physics']['timestep_s'], gravity='0 0 -9.81',
                            integrator='implicitfast', cone='elliptic',
                            impratio='%g' % config['physics']['friction_impratio'],
-                           jacobian=config['physics']['jacobian'])
-    ET.SubElement(option, 'flag', sleep='enable',       # debris at rest sleeps (twin_pipes); the robot never
-                  multiccd='enable' if config['physics']['multiccd'] else 'disable')
+                           jacobian=config['physics']['jacobian'],
+                           ccd_iterations='%d' % config['physics']['ccd_iterations'])
+    # Nothing newer than MuJoCo 3.2.3, the newest with Python 3.8 wheels; measurements.md#twin-sleeping
+    ET.SubElement(option, 'flag', multiccd='enable' if config['physics']['multiccd'] else 'disable',
+                  nativeccd='enable' if config['physics']['native_ccd'] else 'disable')
     ET.SubElement(root, 'visual').append(ET.Element('global', offwidth='640', offheight='480'))
     _defaults(root, config)
     body = ET.SubElement(root, 'worldbody')

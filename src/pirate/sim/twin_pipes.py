@@ -211,12 +211,10 @@ class WallBuilder(object):
         self.tube(frame.origin, frame.axes, obstacle['diameter_mm'] / 2000.0, lambda r: [(0.0, length)])
 
     def _obstacle_debris(self, world, obstacle):
-        """A loose box that falls to the floor. At rest it sleeps (MuJoCo's
-        sleeping islands: no contacts, no solver work) until something
-        awake touches it; the robot never sleeps (twin_robot)."""
+        """A loose box that falls to the floor, where the robot may push it."""
         radius, frame = self._floor(world, obstacle)
         half = obstacle['size_mm'] / 2000.0
-        body = ET.SubElement(self.parent, 'body', name='debris%d' % self.count, sleep='allowed',
+        body = ET.SubElement(self.parent, 'body', name='debris%d' % self.count,
                              pos=_fmt(_add(frame.origin, frame.axes[2], -(radius - half - 0.002))))
         ET.SubElement(body, 'freejoint')
         ET.SubElement(body, 'geom', type='box', size=_fmt((half, half, half)), mass='0.005',

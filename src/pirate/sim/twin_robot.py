@@ -155,8 +155,7 @@ class RobotBuilder(object):
     def build(self, parent, pos, xyaxes):
         """The robot with its root (rotational rear half) at ``pos``."""
         half = self.geo['module_length_m'] / 2
-        root = ET.SubElement(parent, 'body', name=ROOT, pos=_fmt(pos), xyaxes=_fmt(xyaxes),
-                             sleep='never')       # its boards may move it at any sample
+        root = ET.SubElement(parent, 'body', name=ROOT, pos=_fmt(pos), xyaxes=_fmt(xyaxes))
         ET.SubElement(root, 'freejoint', name=ROOT_JOINT)
         self._module(root, ROOT, self.mass['rotational_half'], -1, half)
         ET.SubElement(root, 'site', name='imu', pos='0 0 0')

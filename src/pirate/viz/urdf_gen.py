@@ -201,10 +201,26 @@ def build():
     return robot
 
 
+def _indent(element, level=0, space='  '):
+    """Indent ``element``'s children in place, as ElementTree.indent
+    (Python 3.9 on) does."""
+    if len(element) == 0:
+        return
+    inner = '\n' + space * (level + 1)
+    if not (element.text or '').strip():
+        element.text = inner
+    for child in element:
+        _indent(child, level + 1, space)
+        if not (child.tail or '').strip():
+            child.tail = inner
+    if not (element[-1].tail or '').strip():
+        element[-1].tail = '\n' + space * level
+
+
 def generate():
     """The URDF text, deterministic (the checked-in file must equal it)."""
     root = build()
-    ET.indent(root, space='  ')
+    _indent(root)
     return '<?xml version="1.0"?>\n' + ET.tostring(root, encoding='unicode') + '\n'
 
 
