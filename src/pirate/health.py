@@ -80,10 +80,12 @@ def command_writers(rogues, owner):
     return Report(OK, 'only %s writes the command topics' % owner, values)
 
 
-def small_states(stale, reason, age_s, boards):
+def small_states(stale, reason, age_s, boards, loss=None):
     """The Small State stream as the state node sees it: every board fresh,
-    or stale with the reason (the silent boards named)."""
+    or stale with the reason (the silent boards named). ``loss``: board ->
+    fraction of its recent replies lost, shown per board."""
     values = [('age_s', '%.3f' % age_s), ('boards', boards)]
+    values += [('board %d loss' % board, '%.1f %%' % (100.0 * rate)) for board, rate in sorted((loss or {}).items())]
     if math.isinf(age_s):
         return Report(ERROR, 'no Small State yet (robot end running? serial link up?)', values)
     if stale:

@@ -180,6 +180,15 @@ def test_a_cancel_from_outside_the_mission_is_not_retried():
     assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE']
 
 
+def test_a_step_cancelled_for_a_rogue_writer_ends_the_mission_naming_the_writer():
+    robot = FakeRobot(0.3)
+    rogue = 'DRIVE cancelled during drive: second writer on /pirate/control_array: /rostopic_4711'
+    robot.fail = {'DRIVE': ['preempted']}
+    robot.run = lambda step, run=robot.run: run(step)._replace(message=rogue) if step.pab == 'DRIVE' else run(step)
+    outcome = mission(robot).run()
+    assert outcome.status == 'cancelled' and '/rostopic_4711' in outcome.message, outcome.message
+
+
 def _in_thread(run):
     result = {}
     thread = threading.Thread(target=lambda: result.update(outcome=run.run()), daemon=True)

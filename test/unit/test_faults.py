@@ -7,6 +7,7 @@ only by the tests, to measure what the robot did.
 """
 import math
 import os
+import random
 import threading
 import time
 
@@ -354,3 +355,134 @@ def test_a_silent_camera_board_stops_no_pab():
         assert h.assembler.snapshot(h.robot_time).silent == (20,)
         reason, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT))
         assert reason is None and outcome.status == 'succeeded', (reason, outcome)
+
+
+# --- a lossy bus: loss is not silence -------------------------------------------------------
+
+#: A Clamp Straight from upright lasts about 11 robot s in the twin; the lossy
+#: stream runs well beyond one.
+CLAMP_STRAIGHT_ROBOT_S = 30.0
+#: What the campaign injected: 10 % of Small States dropped, each delayed 0-80 ms.
+LOSS, JITTER_S = 0.1, 0.08
+
+
+def _lossy_stream(seed, cycles, loss=LOSS, jitter=JITTER_S, silent_from=None):
+    """(arrival s, board) of a Mega cycle every 0.1 s, each reply lost with
+    ``loss`` and delayed by up to ``jitter``; ``silent_from``: (board, s)
+    after which that board answers no more. Sorted by arrival."""
+    rng = random.Random(seed)
+    stream = []
+    for cycle in range(cycles):
+        sent = cycle * 0.1
+        for board in tables.BOARDS:
+            lost = rng.random() < loss
+            if not lost and not (silent_from and board == silent_from[0] and sent >= silent_from[1]):
+                stream.append((sent + rng.uniform(0.0, jitter), board))
+    return sorted(stream)
+
+
+def _feed(assembler, stream, until=math.inf):
+    """Feed ``stream`` up to ``until``; yield each arrival's snapshot."""
+    for arrival, board in stream:
+        if arrival > until:
+            return
+        _one_board(assembler, board, arrival)
+        yield arrival, assembler.snapshot(arrival)
+
+
+def _one_board(assembler, board, now):
+    data = [0] * tables.SMALL_STATE_SIZE
+    if board == tables.IMU_BOARD:
+        y, z = units.roll_to_gravity(math.pi / 2)
+        data[tables.SS_IMU_Y], data[tables.SS_IMU_Z] = int(y), int(z)
+    assembler.update(board, data, now)
+
+
+@pytest.mark.parametrize('seed', range(20))
+def test_ten_percent_loss_with_jitter_never_makes_the_state_stale(seed):
+    """Three replies of one board lost in a row (0.1 % of cycles at 10 % loss)
+    made the state stale "board N silent": every goal aborted under loss."""
+    assembler = StateAssembler()
+    cycles = int(CLAMP_STRAIGHT_ROBOT_S / 0.1)
+    stale = [(round(at, 2), snap.silent) for at, snap in _feed(assembler, _lossy_stream(seed, cycles))
+             if snap.stale]
+    assert stale == []
+    assert all(0.03 <= rate <= 0.3 for rate in assembler.loss().values()), assembler.loss()
+
+
+def test_a_board_going_silent_on_a_clean_bus_is_noticed_within_300_ms():
+    """Measured from its first missing reply (due one cycle after its last)."""
+    assembler = StateAssembler()
+    stream = _lossy_stream(0, 200, loss=0.0, jitter=0.0, silent_from=(22, 10.0))
+    first_missing = 10.0
+    noticed = next(at for at, snap in _feed(assembler, stream) if at > 1.0 and snap.stale)
+    assert assembler.snapshot(noticed).silent == (22,)
+    assert noticed - first_missing <= 0.3 + 0.1       # + the cycle that notices it
+    assert not any(snap.stale for _, snap in _feed(StateAssembler(), stream, until=first_missing + 0.25))
+
+
+def test_a_board_going_silent_on_a_lossy_bus_is_still_noticed():
+    """At 10 % loss and 0-80 ms jitter six to eight replies in a row make a
+    silence (what that loss rate makes unlikely): within a second."""
+    assembler = StateAssembler()
+    stream = _lossy_stream(1, 200, silent_from=(27, 10.0))
+    noticed = next(at for at, snap in _feed(assembler, stream) if snap.stale and snap.silent)
+    assert assembler.snapshot(noticed).silent == (27,)
+    assert 10.0 <= noticed <= 10.0 + 1.0
+
+
+def test_a_clamp_straight_succeeds_with_ten_percent_loss_and_jitter():
+    """In the twin every goal aborted "board N silent" under 10 % loss."""
+    with SimHarness(speedup=SPEEDUP) as h:
+        h.assembler.update = _LossyBus(h.assembler.update, random.Random(3))
+        lost = []
+        lose = h.feed.lose
+        h.feed.lose = lambda reason: (lost.append(reason), lose(reason))
+        start = h.robot_time
+        reason, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT))
+        assert reason is None and outcome.status == 'succeeded', (reason, outcome)
+        assert lost == []
+        assert h.robot_time - start <= CLAMP_STRAIGHT_ROBOT_S / 2
+        assert 0.03 <= max(h.assembler.loss().values()) <= 0.3
+
+
+class _LossyBus(object):
+    """Between the harness and its assembler: each reply of a cycle checked
+    at ``now`` was sent 50 ms before, is lost with :data:`LOSS` or arrives
+    0-80 ms after it was sent; one arriving after the check waits for the
+    next cycle's (as the state node's checks fall between arrivals)."""
+
+    def __init__(self, update, rng):
+        self.update, self.rng = update, rng
+        self.late = []
+
+    def __call__(self, board, data, now):
+        for arrival, late_board, late_data in [m for m in self.late if m[0] <= now]:
+            self.update(late_board, late_data, arrival)
+        self.late = [m for m in self.late if m[0] > now]
+        if self.rng.random() < LOSS:
+            return False
+        arrival = now - 0.05 + self.rng.uniform(0.0, JITTER_S)
+        if arrival > now:
+            self.late.append((arrival, board, data))
+            return False
+        return self.update(board, data, arrival)
+
+
+@pytest.mark.parametrize('distance', [0.0, -1e-9, 0.08, -0.08])
+def test_a_drive_shorter_than_the_odometrys_resolution_is_refused(distance):
+    """Drive -1e-9 mm was accepted (0 mm was refused) and turned the wheels for 140 ms."""
+    guards = GuardBook(*load_files()).for_diameter(90)
+    goal = type('Goal', (), dict(name=DRIVE, pipe_diameter=90, distance=distance, speed=20.0, option=0))
+    reason = Drive().check(goal, CLAMPED, guards)
+    assert reason and 'no drive' in reason and "odometry's resolution, 0.083 mm" in reason, reason
+    assert Drive().check(type('Goal', (), dict(goal.__dict__, distance=0.1)), CLAMPED, guards) is None
+
+
+def test_a_board_whose_latest_reply_is_missing_is_named_before_it_is_silent():
+    assembler = StateAssembler()
+    stream = _lossy_stream(0, 200, loss=0.0, jitter=0.0, silent_from=(22, 10.0))
+    missed = [(round(at, 2), snap.missed, snap.silent) for at, snap in _feed(assembler, stream)
+              if 9.9 <= at <= 10.4 and snap.missed + snap.silent]
+    assert missed[0][:2] == (10.1, (22,)), missed      # the cycle its reply was due in (last at 9.9)
+    assert all(22 in m + s for _, m, s in missed) and missed[-1][2] == (22,)

@@ -55,6 +55,12 @@ def test_small_states_name_the_silent_boards():
     assert stale.level == health.ERROR and 'board 22 silent' in stale.message
 
 
+def test_small_states_show_each_boards_loss_rate():
+    lossy = health.small_states(False, '', 0.05, 9, {22: 0.1, 21: 0.0})
+    assert lossy.level == health.OK
+    assert ('board 22 loss', '10.0 %') in lossy.values and ('board 21 loss', '0.0 %') in lossy.values
+
+
 def test_panel_goals_warn_until_the_panel_reaches_the_server():
     assert health.panel_goals(False).level == health.WARN
     assert 'refused' in health.panel_goals(False).message

@@ -55,6 +55,7 @@ ROS_MODULES = (
     'pirate.link.host',
     'pirate.link.service_bridge',
     'pirate.inspection.inspection_node',
+    'pirate.manager.action_server_ros',
     'pirate.manager.manager_node',
     'pirate.panel.mapper_ros',
     'pirate.panel.midi_node',

@@ -37,7 +37,7 @@ import time
 
 import pytest
 
-from pirate.robot import units
+from pirate.robot import tables, units
 from pirate.sequencer import clamp_state
 from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.pabs import codes
@@ -388,3 +388,45 @@ def test_a_junction_from_a_clamp_rolled_out_of_its_straight_band_re_adjusts_it_f
             assert truth['poses']['bend_iv_module'][0][0] > tee.entry.origin[0] + tee.diameter
         else:
             assert all(truth['poses'][body][0][1] > 0.045 for body in JOINT_BODIES), truth['poses']
+
+
+def test_a_frozen_bend_i_during_a_turn_aborts_naming_it_within_1_s_and_20_mm():
+    """Board 22 answering with a stuck Bend I (angle and spring) while the
+    front clamps at the corner: the turn waited on Bend I's guard until it
+    timed out 15 s later, blaming the pipe (frozen while steering, it drove
+    on blind 24 s and 400 mm)."""
+    option, roll, _ = SIDES['left']
+    world = network.load(network.world_path('bend_left_90'))
+    with SimHarness(speedup=TURN_SPEEDUP, world=world.name, orientation=roll) as h:
+        clamped_sideways(h, option)
+        real, frozen = h.model.small_state, {}
+
+        def small_state(board):
+            data = real(board)
+            if board == 22 and frozen:
+                data[tables.SS_ANGLE], data[tables.SS_BEND_LOAD] = frozen['angle'], frozen['spring']
+            return data
+        h.model.small_state = small_state
+        result = {}
+        worker = threading.Thread(target=lambda: result.update(r=h.execute(h.goal(
+            codes.MITRE_BEND, option=option, distance=800.0))), daemon=True)
+        worker.start()
+        assert _wait(h, lambda: h.server.primitive == 'clamp front at the corner', 90.0), h.server.primitive
+        robot_wait(h, 0.3)                                   # Bend I driven toward the wall
+        data = real(22)
+        frozen.update(angle=data[tables.SS_ANGLE], spring=data[tables.SS_BEND_LOAD])
+        frozen_at, odometry_at = h.robot_time, h.feed.latest().odometry
+        worker.join(60.0)
+        reason, outcome = result['r']
+        assert reason is None and outcome.status == 'aborted' and 'bend_i reads frozen' in outcome.message, outcome
+        ended_at = h.robot_time
+        robot_wait(h, 1.0)                                   # the wheels stopped by the hold
+        assert ended_at - frozen_at <= 1.0, ended_at - frozen_at
+        assert h.feed.latest().odometry - odometry_at <= 20.0
+
+
+def _wait(h, condition, wall_s):
+    end = time.monotonic() + wall_s
+    while not condition() and time.monotonic() < end:
+        time.sleep(0.002)
+    return condition()

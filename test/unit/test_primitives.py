@@ -9,9 +9,9 @@ import math
 import pytest
 
 from pirate.robot import safety, tables, units
-from pirate.state.feed import Cancelled, RobotView, TimedOut
+from pirate.state.feed import Cancelled, RobotView, SensorFrozen, TimedOut
 from pirate.sequencer.guards import GuardBook, load_files
-from pirate.sequencer.primitives import MotionPrimitives, Refused
+from pirate.sequencer.primitives import FrozenJoints, MotionPrimitives, Refused
 
 from fakes import command_arrays
 
@@ -48,6 +48,9 @@ class FakeFeed(object):
 
     def check(self):
         """Neither cancelled nor without feedback (RobotFeed.check)."""
+
+    def watch(self, check):
+        """RobotFeed.watch: the frozen-sensor check (its own tests call it)."""
 
     def wait_until(self, guard, timeout, describe='guard'):
         self.waits.append((describe, guard, timeout, self.arrays()))
@@ -358,3 +361,59 @@ def test_follow_ends_with_its_own_timeout_when_a_state_lands_on_the_deadline(rig
     with pytest.raises(TimedOut, match=r'swing: bend_iii >= 1.65 not reached within 1.0 s'):
         prims.follow('swing', acted.append, lambda v: False, 'bend_iii >= 1.65', 1.0)
     assert [v.stamp for v in acted] == [1.0, 1.5] and [w[2] for w in feed.waits] == [1.0, 0.5]
+
+
+# --- a frozen sensor ---------------------------------------------------------------
+
+def _bend_i(stamp, angle, effort):
+    return RobotView({'bend_i': angle}, math.pi / 2, 0.0, 0.0, stamp, {'bend_i': effort})
+
+
+def test_a_driven_bend_whose_readings_stand_still_is_frozen():
+    """Board 22 answering a stuck Bend I during a turn was never noticed."""
+    frozen = FrozenJoints(lambda joint, view: 30.0, joints=('bend_i',))
+    for cycle in range(7):                  # 0.6 s driven, not moving: not yet
+        frozen.check(_bend_i(10.0 + 0.1 * cycle, -0.5, -80.0))
+    with pytest.raises(SensorFrozen, match='bend_i reads frozen'):
+        frozen.check(_bend_i(10.7, -0.5, -80.0))
+
+
+@pytest.mark.parametrize('moves', [(0.004, 0.0), (0.0, 3.0)])
+def test_a_driven_bend_moving_its_angle_or_its_spring_is_not_frozen(moves):
+    frozen = FrozenJoints(lambda joint, view: 30.0, joints=('bend_i',))
+    for cycle in range(30):
+        step = cycle // 4                   # a slow bend: a few counts every 0.4 s
+        frozen.check(_bend_i(10.0 + 0.1 * cycle, -0.5 + moves[0] * step, -80.0 + moves[1] * step))
+
+
+def test_a_bend_not_driven_may_stand_still():
+    """A clamped bend at its torque setpoint (no demand) or held in PWM stands still."""
+    driven = {'now': False}
+    frozen = FrozenJoints(lambda joint, view: 30.0 if driven['now'] else 0.0, joints=('bend_i',))
+    for cycle in range(30):
+        frozen.check(_bend_i(10.0 + 0.1 * cycle, -0.5, -80.0))
+    driven['now'] = True                    # a new setpoint: the window starts now
+    for cycle in range(30, 37):
+        frozen.check(_bend_i(10.0 + 0.1 * cycle, -0.5, -80.0))
+
+
+def test_the_torque_demand_is_setpoint_within_its_limit_minus_the_spring(rig):
+    prims, _, _ = rig
+    prims.control.set_mode('bend_i', 'torque')
+    prims.setpoint.set('bend_i', -60)
+    at = lambda effort: _bend_i(1.0, 0.0, effort)     # noqa: E731
+    assert prims.torque_demand('bend_i', at(-30.0)) == pytest.approx(-units.spring_to_mnm(-60) - 30.0, abs=1.0)
+    assert prims.torque_demand('bend_i', at(-62.0)) == 0.0            # at its setpoint: at rest
+    assert prims.torque_demand('bend_i', at(-93.0)) == 0.0            # at the report's 400 mNm per 256: at rest
+    prims.limit.set('bend_i', 20)
+    assert prims.torque_demand('bend_i', at(-20.0)) == 0.0            # at its limit
+    prims.control.set_mode('bend_i', 'pwm')
+    assert prims.torque_demand('bend_i', at(-88.0)) == 0.0
+
+
+def test_a_bend_whose_board_does_not_answer_is_not_called_frozen():
+    """Its values are held because its board is silent: the state says so
+    (board N silent), not the frozen check (the silent-board rostest at x2)."""
+    frozen = FrozenJoints(lambda joint, view: 30.0, joints=('bend_i',))
+    for cycle in range(12):
+        frozen.check(_bend_i(10.0 + 0.1 * cycle, -0.5, -80.0)._replace(missed_boards=(22,) if cycle else ()))

@@ -214,6 +214,21 @@ def test_cancel_before_the_first_action_preempts_safely(rig):
     assert not server.cancelled
 
 
+def test_a_goal_cancelled_for_a_rogue_writer_says_who_wrote(rig):
+    """The mission's reason after a rogue writer was "step N was cancelled
+    outside the mission": the goal's result did not name the writer."""
+    server, feed, _, _, _ = rig
+    feed.push(state())
+    rogue = 'second writer on /pirate/setpoint_array: /rostopic_4711 (only /pirate_manager may command the robot)'
+    assert server.reserve(Goal(CLAMP_STRAIGHT)) is None
+    server.cancel(rogue)
+    outcome = server.run(Goal(CLAMP_STRAIGHT))
+    assert outcome.status == PREEMPTED and outcome.message.endswith(': ' + rogue), outcome.message
+    assert server.reserve(Goal(CLAMP_STRAIGHT)) is None
+    server.cancel()                                     # the operator's cancel of the next goal
+    assert 'rostopic' not in server.run(Goal(CLAMP_STRAIGHT)).message
+
+
 def test_lost_feedback_aborts_safely(rig):
     server, feed, clock, wires, _ = rig
     feed.push(state())

@@ -4,11 +4,13 @@ client interface without its race. A server that ends the goal before
 the call) must still be seen ended, with each callback called once. A
 scripted ActionClient, no master."""
 import actionlib
+import actionlib.action_client
 import pytest
 import rospy
-from actionlib_msgs.msg import GoalStatus
+from actionlib_msgs.msg import GoalID, GoalStatus, GoalStatusArray
+from actionlib_msgs.msg import GoalStatus as GoalStatusMsg
 
-from pirate.msg import PirateResult
+from pirate.msg import PirateAction, PirateActionResult, PirateGoal, PirateResult
 from pirate.supervisory.goal_client_ros import SimpleGoalClient
 
 CommState = actionlib.CommState
@@ -125,3 +127,61 @@ def test_a_cancel_after_the_goal_ended_leaves_it_ended():
     client.cancel_goal()
     assert server.goals[0].cancelled == 0
     assert client.wait_for_result(rospy.Duration(0.2)) and client.get_state() == GoalStatus.SUCCEEDED
+
+
+# --- actionlib's own client state machine, driven message by message ----------------------
+
+class Wire(object):
+    """actionlib's GoalManager with the topics replaced: what the client sent,
+    and the server's messages delivered when the test says."""
+
+    def __init__(self):
+        self.manager = actionlib.action_client.GoalManager(PirateAction)
+        self.sent = []                   # ('goal', id) / ('cancel', id), in order
+        self.manager.register_send_goal_fn(lambda goal: self.sent.append(('goal', goal.goal_id.id)))
+        self.manager.register_cancel_fn(lambda goal_id: self.sent.append(('cancel', goal_id.id)))
+
+    def send_goal(self, goal, transition_cb=None, feedback_cb=None):
+        return self.manager.init_goal(goal, transition_cb, feedback_cb)
+
+    def status(self, *statuses):
+        """A status array from the server: (goal id, GoalStatus) pairs."""
+        self.manager.update_statuses(GoalStatusArray(status_list=[
+            GoalStatusMsg(goal_id=GoalID(id=goal_id), status=status) for goal_id, status in statuses]))
+
+    def result(self, goal_id, status, message):
+        self.manager.update_results(PirateActionResult(
+            status=GoalStatusMsg(goal_id=GoalID(id=goal_id), status=status), result=PirateResult(message=message)))
+
+
+def test_a_goal_cancelled_before_the_server_acknowledged_it_keeps_its_result():
+    """A goal/cancel storm: 9 goals ended LOST at the client although the server
+    published their results. Cancelled at once, actionlib's client waited for
+    the cancel's ack and took the next status array not listing the goal yet
+    (sent for another goal) for a goal the server had lost."""
+    wire = Wire()
+    client = SimpleGoalClient(client=wire)
+    client.send_goal(PirateGoal(name=1))
+    goal_id = wire.sent[0][1]
+    client.cancel_goal()                                        # before any status lists the goal
+    wire.status(('another-goal', GoalStatus.SUCCEEDED))         # the server has not seen it yet
+    assert not client.wait_ended(0.0)
+    wire.status((goal_id, GoalStatus.PENDING))                  # now it has: the cancel goes out
+    assert wire.sent == [('goal', goal_id), ('cancel', goal_id)]
+    wire.status((goal_id, GoalStatus.RECALLING))
+    wire.result(goal_id, GoalStatus.RECALLED, 'recalled before it started')
+    assert client.wait_ended(0.0)
+    assert client.get_state() == GoalStatus.RECALLED
+    assert client.get_result().message == 'recalled before it started'
+
+
+def test_a_goal_cancelled_while_active_is_cancelled_at_once():
+    wire = Wire()
+    client = SimpleGoalClient(client=wire)
+    client.send_goal(PirateGoal(name=1))
+    goal_id = wire.sent[0][1]
+    wire.status((goal_id, GoalStatus.ACTIVE))
+    client.cancel_goal()
+    assert wire.sent == [('goal', goal_id), ('cancel', goal_id)]
+    wire.result(goal_id, GoalStatus.PREEMPTED, 'cancelled')
+    assert client.wait_ended(0.0) and client.get_state() == GoalStatus.PREEMPTED

@@ -40,6 +40,7 @@ from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, 
                         PirateResult, PrimitiveStep, RobotState, SetpointArray, SmallState)
 from pirate.cfg import SequencerConfig
 from pirate.sequencer import tuning
+from pirate.manager.action_server_ros import QuietActionServer
 from pirate.sequencer.primitives import MotionPrimitives
 from pirate.sequencer.server import ABORTED, PREEMPTED, SUCCEEDED, Feedback, PirateServer
 from pirate.srv import ServerStatus, ServerStatusResponse
@@ -145,8 +146,8 @@ class PirateManager(object):
         self._current = None
         self._pending = threading.Condition()
         self._queue = []
-        self._action = actionlib.ActionServer(names.PIRATE_ACTION, PirateAction, self._on_goal,
-                                              self._on_cancel, auto_start=False)
+        self._action = QuietActionServer(names.PIRATE_ACTION, PirateAction, self._on_goal,
+                                         self._on_cancel, auto_start=False)
         rospy.Service(names.SERVER_STATUS_SERVICE, ServerStatus, self._status)
         self._lockstep = (rospy.Publisher(names.LOCKSTEP_TOPIC, Time, queue_size=5)
                           if rospy.get_param('/use_sim_time', False) else None)
@@ -230,7 +231,8 @@ class PirateManager(object):
         self.feed.push(RobotView(dict(zip(msg.name, msg.position)), msg.orientation,
                                  msg.odometry, msg.velocity, msg.header.stamp.to_sec(),
                                  dict(zip(msg.name, msg.effort)),
-                                 {'front': msg.odometry_front, 'rear': msg.odometry_rear}))
+                                 {'front': msg.odometry_front, 'rear': msg.odometry_rear},
+                                 tuple(bytearray(msg.missed_boards))))
 
     def _measured_angles(self):
         """Joint angles (rad) of a fresh robot state, or None."""
@@ -243,7 +245,7 @@ class PirateManager(object):
         report = self._writers.heard(topic, sender, time.monotonic())
         if report:
             rospy.logerr('pirate_manager: %s', report)
-            self.server.cancel()
+            self.server.cancel(report)
             self.prims.safe_hold()
             self.control.command('stop')
             self._diagnostics.force_update()     # the ERROR on /diagnostics now, not at the next 1 Hz
@@ -293,6 +295,8 @@ class PirateManager(object):
         return 'a PAB is running (goal %s is ending): goals are not queued' % self._current.get_goal_id().id
 
     def _on_cancel(self, handle):
+        if handle.get_goal() is None:   # a cancel of a goal not received yet: actionlib recalls it
+            return
         with self._pending:
             if self._current is not None and handle.get_goal_id().id == self._current.get_goal_id().id:
                 self.server.cancel()

@@ -9,7 +9,7 @@ robot. Pure Python: the map comes in as the dict rosparam loaded (or
 import collections
 
 from pirate.panel import mission_buttons
-from pirate.robot import safety, tables
+from pirate.robot import safety, tables, units
 from pirate.sequencer import goals
 
 MANUAL, PAB = 'manual', 'pab'
@@ -106,9 +106,9 @@ def _goal(where, raw):
         distance, speed = float(raw.get('distance', 0.0)), float(raw.get('speed', 0.0))
     except (TypeError, ValueError):
         raise ConfigError('%s: distance and speed must be numbers' % where)
-    if pab == 'DRIVE' and (distance == 0 or not 0 <= speed <= safety.DRIVE_MAX_MM_S):
-        raise ConfigError('%s: DRIVE needs a distance (mm, not 0) and a speed in [0, %g] mm/s'
-                          % (where, safety.DRIVE_MAX_MM_S))
+    if pab == 'DRIVE' and (abs(distance) < units.WHEEL_MM_PER_COUNT or not 0 <= speed <= safety.DRIVE_MAX_MM_S):
+        raise ConfigError('%s: DRIVE needs a distance (mm, signed, at least the odometry\'s resolution %g) and a '
+                          'speed in [0, %g] mm/s' % (where, units.WHEEL_MM_PER_COUNT, safety.DRIVE_MAX_MM_S))
     return Goal(goals.CODES[pab], distance, speed, goals.OPTIONS[option])
 
 

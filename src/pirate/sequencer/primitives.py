@@ -13,10 +13,10 @@ puts on the wire (the hold is atomic: pirate.robot.hold).
 """
 import contextlib
 
-from pirate.robot import safety, units
+from pirate.robot import safety, tables, units
 from pirate.robot.hold import safe_hold
 from pirate.sequencer import clamp_state
-from pirate.state.feed import TimedOut
+from pirate.state.feed import SensorFrozen, TimedOut
 
 #: Suffix of a guard row for the robot lying on a side (config/guards_<mm>.yaml).
 SIDEWAYS = clamp_state.SIDEWAYS
@@ -56,6 +56,74 @@ class BendProgress(object):
                 or any(abs(e - m) >= self.min_mnm for e, m in zip(efforts, mark_efforts)))
 
 
+#: The bends a frozen sensor is looked for on: a series spring between motor
+#: and joint, so a driven bend moves its angle or its spring, even against a wall.
+SPRING_BENDS = tuple(j.name for j in tables.JOINTS if j.has_spring)
+_BOARD = {j.name: j.board for j in tables.JOINTS}
+#: A torque-mode bend this far from its setpoint (mNm, plus a share of the
+#: setpoint: what the motor needs to lift the spring's own load, 7 % in the
+#: twin) is driven: its torque loop turns the motor at a tenth of full duty or
+#: more (twin: 3 duty per count, 1 count about 1 mNm).
+FROZEN_DEMAND_MNM = 10.0
+FROZEN_DEMAND_SHARE = 0.1
+#: mNm of spring a torque setpoint count comes to at rest: the twin's board
+#: loop holds its spring at the setpoint's counts (about 1 mNm each); the
+#: report's clamps peak at about 400 mNm for 256 (the fast fake robot's
+#: 1.5625). Which the PICOs do is not measured, so a bend at either is at rest.
+REST_MNM_PER_COUNT = (None, 400.0 / 256.0)
+#: Driven for this long (robot s) with its angle and spring within
+#: FROZEN_STILL of where they were, a bend's sensor is frozen. At a tenth of
+#: full duty the worm turns 0.031 rad/s (0.311 rad/s no-load): in 0.5 s
+#: 0.016 rad, 10 angle counts or 37 mNm on the spring; one Mega cycle more,
+#: so a board that stops answering (its last readings held, silent after
+#: 0.35-0.45 s on a clean bus) is named silent first; measurements.md#frozen-sensor.
+FROZEN_WINDOW_S = 0.6
+#: Still: less than 2 counts of either sensor (rad of angle, mNm of spring).
+FROZEN_STILL_RAD, FROZEN_STILL_MNM = 2 * units.encoder_to_rad(1), 2.0
+
+
+class FrozenJoints(object):
+    """Bends driven by their torque loop whose readings stand still.
+
+    ``demand(joint, view)`` -> mNm the joint's loop is driving for now (0
+    when it is not driven). :meth:`check` raises :class:`SensorFrozen`
+    naming the joint once it has been driven :data:`FROZEN_WINDOW_S`
+    without its angle or spring moving; a joint that moves, or stops being
+    driven, starts a new window.
+    """
+
+    def __init__(self, demand, joints=SPRING_BENDS, window_s=FROZEN_WINDOW_S):
+        self.demand, self.joints, self.window_s = demand, joints, window_s
+        self._marks = {}            # joint -> (stamp, angle, effort) when it was last seen moving
+        self._stamp = None
+
+    def reset(self):
+        """A new goal: no joint is being watched."""
+        self._marks, self._stamp = {}, None
+
+    def check(self, view):
+        """Raise SensorFrozen for a bend driven but still; None otherwise."""
+        if view.stamp == self._stamp or view.efforts is None:
+            return
+        self._stamp = view.stamp
+        for joint in self.joints:
+            self._check_joint(joint, view)
+
+    def _check_joint(self, joint, view):
+        if joint not in view.angles or _BOARD[joint] in view.missed_boards:
+            return                  # not answering: its silence is the state's to tell
+        angle, effort = view.angles[joint], view.efforts.get(joint, 0.0)
+        mark = self._marks.get(joint)
+        if not self.demand(joint, view):
+            self._marks.pop(joint, None)
+        elif mark is None or abs(angle - mark[1]) >= FROZEN_STILL_RAD or abs(effort - mark[2]) >= FROZEN_STILL_MNM:
+            self._marks[joint] = (view.stamp, angle, effort)
+        elif view.stamp - mark[0] > self.window_s:
+            raise SensorFrozen('%s reads frozen: driven %.0f mNm from its torque setpoint for %.1f s, its angle '
+                               '(%.3f rad) and spring (%.0f mNm) did not move (sensor or its board stuck)'
+                               % (joint, self.demand(joint, view), view.stamp - mark[0], angle, effort))
+
+
 def report_kind(kind):
     """The report's primitive for guard row ``kind``: a ``*_sideways`` row is
     the same primitive with the guards of a robot lying on a side."""
@@ -81,11 +149,28 @@ class MotionPrimitives(object):
         self.guards = None
         self.executed = []          # names of advanced primitives, in order
         self.notify = notify or (lambda primitive, guard: None)
+        self.frozen = FrozenJoints(self.torque_demand)
+        feed.watch(self.frozen.check)
+
+    def torque_demand(self, joint, view):
+        """mNm bend ``joint``'s torque loop is driving for, or 0: its setpoint
+        (within its torque limit) minus its spring, when that is more than
+        the loop holds at rest (:data:`FROZEN_DEMAND_MNM`)."""
+        if self.control.mode_of(joint) != 'torque':
+            return 0.0
+        limit = self.limit.get(joint) if self.limit is not None else safety.NO_LIMIT
+        counts = max(-limit, min(limit, self.setpoint.get(joint)))
+        effort = view.efforts.get(joint, 0.0)
+        errors = [abs((units.spring_to_mnm(counts) if scale is None else scale * counts) - effort)
+                  for scale in REST_MNM_PER_COUNT]
+        error = min(errors)
+        return error if error > FROZEN_DEMAND_MNM + FROZEN_DEMAND_SHARE * abs(units.spring_to_mnm(counts)) else 0.0
 
     def use(self, guards):
         """Work with the guards of the goal's pipe diameter."""
         self.guards = guards
         self.executed = []
+        self.frozen.reset()
 
     @contextlib.contextmanager
     def writing(self):

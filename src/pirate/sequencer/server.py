@@ -238,9 +238,10 @@ class PirateServer(object):
         except Exception as lost:  # pylint: disable=broad-except; the one exit path must hold
             self._log('could not keep %s (%s): %s' % (what, data, lost))
 
-    def cancel(self):
-        """Cancel the running goal; the PAB stops at its next wake-up."""
-        self.feed.cancel()
+    def cancel(self, reason=None):
+        """Cancel the running goal; the PAB stops at its next wake-up.
+        ``reason``: why, when not the operator (the goal's result says it)."""
+        self.feed.cancel(reason)
 
     @property
     def cancelled(self):
@@ -261,7 +262,8 @@ class PirateServer(object):
             ctx = PabContext(self.prims, self.feed, guards, goal, self._report)
             outcome = Outcome(SUCCEEDED, '%s: %s' % (pab.name, pab.run(ctx)))
         except feeds.Cancelled:
-            outcome = Outcome(PREEMPTED, '%s cancelled during %s' % (pab.name, self.pab_state))
+            why = ': %s' % self.feed.cancel_reason if self.feed.cancel_reason else ''
+            outcome = Outcome(PREEMPTED, '%s cancelled during %s%s' % (pab.name, self.pab_state, why))
         except (feeds.TimedOut, feeds.FeedbackLost, PabFailed, Refused, NoGuards, safety.Refused) as failure:
             outcome = Outcome(ABORTED, '%s aborted in %s: %s' % (pab.name, self.pab_state, failure))
         except Exception as bug:  # pylint: disable=broad-except; a bug must still end safe

@@ -12,9 +12,11 @@ reason the node logs once; the previous values stay.
 
 Freshness per board: the Mega skips a board that does not
 answer, so the newest message of *any* board says nothing about board 22.
-Every board's last arrival is kept; one silent for ``stale_after`` (or never
-heard while others are) makes the whole state stale, naming it in
-``Snapshot.silent``. :func:`pab_blocker` says whether that stops the PABs:
+A board is silent when its replies stop, not when one or two are lost
+(:class:`ReplyHistory`): on a clean bus ``stale_after`` without an expected
+reply; on a lossy one as many missed cycles as its own loss rate makes
+unlikely. A silent board (or one never heard while others are) makes the
+whole state stale, naming it in ``Snapshot.silent``. :func:`pab_blocker` says whether that stops the PABs:
 a silent board they read does (the clamp angles come from boards 22, 23, 26,
 27); a silent camera or rear board does not. Odometry and wheel speed are
 the median of the six drive boards (:mod:`pirate.state.odometry`), so one
@@ -31,6 +33,15 @@ from pirate.state.odometry import WheelOdometry
 #: Newest data older than this (s, monotonic) makes the state stale: three
 #: Mega cycles of 0.1 s missed; measurements.md#silent-board.
 STALE_AFTER_S = 0.3
+#: The Mega's refresh cycle (s) until replies have shown the real one.
+CYCLE_S = 0.1
+#: Replies per board the loss rate and the cycle are judged over (10 s).
+HISTORY_REPLIES = 100
+#: Chance a board that merely loses replies is taken for silent, per cycle:
+#: 1e-6 x 7 boards x 10 cycles/s is one false abort in 4 robot-hours.
+FALSE_SILENCE = 1e-6
+#: Most missed cycles a silence ever waits for (at a loss rate of 10 %, 6).
+MAX_MISSED_CYCLES = 8
 #: Largest joint angle an AS5055 reports (half a turn either way).
 ANGLE_MAX_COUNTS = 2048
 #: An accelerometer reading (all three axes) this far from 1 g is not gravity.
@@ -50,7 +61,7 @@ WHEEL_READING_MAX_MM_S = 2 * 170.0
 DUTY_READING_MAX = 256
 
 Snapshot = collections.namedtuple(
-    'Snapshot', 'name position effort orientation odometry velocity stale age silent part_odometry')
+    'Snapshot', 'name position effort orientation odometry velocity stale age silent part_odometry missed')
 
 
 class BadState(ValueError):
@@ -65,6 +76,7 @@ class StateAssembler(object):
         self.pan = pan or PanEstimate(*drive_config())     # the camera pan: no encoder
         self._raw = {}                  # board -> list of 9 ints
         self._arrival = {}              # board -> monotonic time
+        self._replies = ReplyHistory(stale_after)
         self._odometry = WheelOdometry()
         self._orientation = math.pi / 2
         self._previous_board = None
@@ -84,6 +96,7 @@ class StateAssembler(object):
         if board in tables.DRIVE_BOARDS:
             self._odometry.update(board, data[tables.SS_ODOMETRY])
         self._raw[board] = data
+        self._replies.reply(board, now)
         self._arrival[board] = now
         complete = board == tables.BOARDS[-1] or new_cycle
         if board == tables.BOARDS[-1]:
@@ -101,11 +114,12 @@ class StateAssembler(object):
         return now - max(self._arrival.values()) if self._arrival else float('inf')
 
     def silent(self, now):
-        """Boards not heard for ``stale_after`` s (or never), once any board was."""
-        if not self._arrival:
-            return ()
-        return tuple(b for b in tables.BOARDS
-                     if now - self._arrival.get(b, -math.inf) > self.stale_after)
+        """Boards whose replies stopped (:class:`ReplyHistory`), once any board was heard."""
+        return self._replies.silent(now)
+
+    def loss(self):
+        """Board -> fraction of its recent replies lost (diagnostics)."""
+        return {board: self._replies.loss(board) for board in tables.BOARDS}
 
     def snapshot(self, now):
         """The robot's state now, as a :data:`Snapshot` (rad, mNm, mm, mm/s)."""
@@ -122,7 +136,105 @@ class StateAssembler(object):
         return Snapshot(list(tables.JOINT_NAMES), positions, efforts, self._orientation,
                         self._odometry.mm, velocity,
                         age > self.stale_after or bool(silent), age, silent,
-                        {part: self._odometry.part_mm(part) for part in tables.PART_WHEEL_BOARDS})
+                        {part: self._odometry.part_mm(part) for part in tables.PART_WHEEL_BOARDS},
+                        tuple(b for b in self._replies.missed(now) if b not in silent))
+
+
+class ReplyHistory(object):
+    """When a board's replies have stopped, told from replies merely lost.
+
+    Each reply's gap since the board's previous one, in Mega cycles (the
+    cycle is the median gap observed, :data:`CYCLE_S` before any), says how
+    many replies were missed in between; over the last
+    :data:`HISTORY_REPLIES` that gives the board's loss rate ``r``. A board
+    is silent once it missed ``k`` expected replies in a row, ``k`` the
+    fewest with ``r ** k <= FALSE_SILENCE`` but at least ``stale_after``'s
+    worth (3 cycles: a clean bus notices a silent board 0.3 s after its
+    first missing reply, as before), plus half a cycle and the largest
+    arrival jitter seen. At 10 % loss ``k`` is 6 (8 with 0-80 ms jitter,
+    which reads as some loss): a silent board is noticed 0.6-0.9 s after its
+    first missing reply instead of aborting a goal about once per Clamp
+    Straight on three lost replies in a row (7 boards x 10 cycles/s x 1e-3);
+    measurements.md#lossy-bus.
+    """
+
+    def __init__(self, stale_after=STALE_AFTER_S):
+        self.stale_after = stale_after
+        self._last = {}                 # board -> time of its newest reply
+        self._first = None              # time of the first reply of any board
+        self._missed = {}               # board -> deque of replies missed before each reply
+        self._jitter = {}               # board -> deque of |gap - whole cycles| s
+        self._gaps = collections.deque(maxlen=HISTORY_REPLIES)
+        self._cycle = CYCLE_S
+
+    def reply(self, board, now):
+        """Board ``board`` answered at ``now`` (s, monotonic)."""
+        if self._first is None:
+            self._first = now
+        last = self._last.get(board)
+        self._last[board] = now
+        if last is None:
+            return
+        gap = now - last
+        self._gaps.append(gap)
+        if len(self._gaps) >= 10:
+            self._cycle = statistics.median(self._gaps)
+        cycles = max(1, int(round(gap / self._cycle)))
+        if cycles > MAX_MISSED_CYCLES + 1:
+            return                      # a silence that ended (a reset, a reconnect), not loss
+        self._missed.setdefault(board, collections.deque(maxlen=HISTORY_REPLIES)).append(cycles - 1)
+        self._jitter.setdefault(board, collections.deque(maxlen=HISTORY_REPLIES)).append(
+            abs(gap - cycles * self._cycle))
+
+    def cycle(self):
+        """The Mega's refresh cycle as the replies show it (s)."""
+        return self._cycle
+
+    def loss(self, board):
+        """Fraction of the board's recent replies lost (0 before any history)."""
+        return _lost_fraction(self._missed.get(board, ()))
+
+    def bus_loss(self):
+        """Fraction of every board's recent replies lost: what a board's own
+        few replies cannot tell yet (the first seconds) the bus's many do."""
+        return _lost_fraction([m for missed in self._missed.values() for m in missed])
+
+    def missed_cycles_allowed(self, board, bus_loss=None):
+        """Replies in a row the board may miss before it is silent."""
+        least = int(round(self.stale_after / self._cycle))
+        rate = max(self.loss(board), self.bus_loss() if bus_loss is None else bus_loss)
+        if rate <= 0.0:
+            return least
+        if rate >= 1.0:
+            return MAX_MISSED_CYCLES
+        return min(MAX_MISSED_CYCLES, max(least, int(math.ceil(math.log(FALSE_SILENCE) / math.log(rate)))))
+
+    def silence_after(self, board, bus_loss=None):
+        """Seconds after its newest reply that the board counts as silent."""
+        jitter = max(self._jitter.get(board, ()) or (0.0,))
+        return (self.missed_cycles_allowed(board, bus_loss) + 0.5) * self._cycle + min(jitter, self._cycle)
+
+    def missed(self, now):
+        """Boards whose latest reply is missing (half a cycle and the jitter
+        seen past when it was due): their values are the last ones heard."""
+        if self._first is None:
+            return ()
+        return tuple(b for b in tables.BOARDS if now - self._last.get(b, self._first)
+                     > 1.5 * self._cycle + min(max(self._jitter.get(b, ()) or (0.0,)), self._cycle))
+
+    def silent(self, now):
+        """Boards whose replies stopped (or never came while others did)."""
+        if self._first is None:
+            return ()
+        bus_loss = self.bus_loss()
+        return tuple(b for b in tables.BOARDS
+                     if now - self._last.get(b, self._first) > self.silence_after(b, bus_loss))
+
+
+def _lost_fraction(missed):
+    """Replies lost / replies expected, from the misses before each reply."""
+    lost = sum(missed)
+    return lost / float(lost + len(missed)) if lost else 0.0
 
 
 def pab_blocker(stale, silent, age):

@@ -33,9 +33,11 @@ import time
 #: joint name -> spring effort in mNm (None when the source has no springs;
 #: the clamp state needs them: a clamp means pressing the wall),
 #: ``part_odometry`` part name ('front' / 'rear') -> that part's own wheels'
-#: odometry in mm (None when the source has none; pirate.state.odometry).
-RobotView = collections.namedtuple('RobotView', 'angles orientation odometry velocity stamp efforts part_odometry',
-                                   defaults=(None, None))
+#: odometry in mm (None when the source has none; pirate.state.odometry),
+#: ``missed_boards`` the boards whose latest reply is missing (their values held).
+RobotView = collections.namedtuple('RobotView',
+                                   'angles orientation odometry velocity stamp efforts part_odometry missed_boards',
+                                   defaults=(None, None, ()))
 
 POLL_S = 0.02
 
@@ -56,6 +58,10 @@ class FeedbackLost(Interrupted):
     """The robot's state stopped arriving."""
 
 
+class SensorFrozen(FeedbackLost):
+    """A joint's readings stand still while it is driven: its sensor is stuck."""
+
+
 class RobotFeed(object):
     """Newest :data:`RobotView`, cancel flag, and guard waiting."""
 
@@ -68,7 +74,14 @@ class RobotFeed(object):
         self._latest = None
         self._arrival = -math.inf
         self._cancelled = False
+        self.cancel_reason = None   # who or what cancelled, when not the operator
         self._lost = None           # why the newest state is unusable, or None
+        self._watch = lambda view: None
+
+    def watch(self, check):
+        """Every wait calls ``check(view)`` on each state before its guard
+        (it raises to end the wait, e.g. :class:`SensorFrozen`)."""
+        self._watch = check
 
     def push(self, view):
         """A new state from the robot (called by the subscriber)."""
@@ -105,16 +118,18 @@ class RobotFeed(object):
         with self._cond:
             return self._robot_clock() - self._arrival
 
-    def cancel(self):
-        """Ask the running wait (and every later one) to end at once."""
+    def cancel(self, reason=None):
+        """Ask the running wait (and every later one) to end at once;
+        ``reason``: why, when not the operator (e.g. a rogue writer)."""
         with self._cond:
             self._cancelled = True
+            self.cancel_reason = reason or self.cancel_reason
             self._cond.notify_all()
 
     def clear_cancel(self):
         """Ready for the next goal."""
         with self._cond:
-            self._cancelled = False
+            self._cancelled, self.cancel_reason = False, None
 
     @property
     def cancelled(self):
@@ -128,7 +143,7 @@ class RobotFeed(object):
 
     def _check_locked(self):
         if self._cancelled:
-            raise Cancelled('cancelled by the operator')
+            raise Cancelled(self.cancel_reason or 'cancelled by the operator')
         if self._lost is not None:
             raise FeedbackLost('robot state stale: %s' % self._lost)
         silent = self._robot_clock() - self._arrival
@@ -148,6 +163,7 @@ class RobotFeed(object):
                 self._check_locked()
                 view = self._latest
                 if view is not None:
+                    self._watch(view)
                     if guard(view):
                         return view
                     start = view.stamp if start is None else start

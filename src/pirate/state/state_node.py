@@ -59,10 +59,12 @@ class PirateStateNode(object):
         rospy.Timer(rospy.Duration(1.0), lambda _event: updater.update())
 
     def _diagnose(self, stat):
-        """diagnostic_updater task: every board fresh, or which are silent."""
+        """diagnostic_updater task: every board fresh, or which are silent; each board's loss rate."""
         snap = self._snapshot()
+        with self._lock:
+            loss = self.assembler.loss()
         return health.fill(stat, health.small_states(snap.stale, stale_reason(snap.silent, snap.age), snap.age,
-                                                     len(tables.BOARDS)))
+                                                     len(tables.BOARDS), loss))
 
     def _snapshot(self):
         with self._lock:
@@ -103,7 +105,8 @@ class PirateStateNode(object):
         state = RobotState(name=snap.name, position=snap.position, effort=snap.effort,
                            orientation=snap.orientation, odometry=snap.odometry,
                            odometry_front=snap.part_odometry['front'], odometry_rear=snap.part_odometry['rear'],
-                           velocity=snap.velocity, stale=snap.stale, silent_boards=list(snap.silent))
+                           velocity=snap.velocity, stale=snap.stale, silent_boards=list(snap.silent),
+                           missed_boards=list(snap.missed))
         state.header.stamp = now
         self._state_pub.publish(state)
         joints = JointState(name=snap.name, position=snap.position, effort=snap.effort)

@@ -115,13 +115,15 @@ class Executive(object):
     """Runs one plan; one instance per mission."""
 
     def __init__(self, route_plan, robot, localiser, settings, policy=None, level=FULL,
-                 progress=None, out=print):
+                 progress=None, out=print, journal=None, name='mission'):
         if level not in LEVELS:
             raise ValueError('autonomy level %r is not one of %s' % (level, ', '.join(LEVELS)))
         self.plan, self.robot, self.localiser = route_plan, robot, localiser
         self.settings, self.policy = settings, dict(policy or {})
         self.level, self.log = level, []
         self._progress, self._out = progress or (lambda p: None), out
+        #: ``journal(record)``: every event as it happens (pirate.supervisory.mission_log)
+        self._journal, self.name = journal or (lambda record: None), name
         self._cond = threading.Condition()
         self._paused = self._cancelled = self._running = False
         self._confirmed = -1
@@ -194,6 +196,7 @@ class Executive(object):
     def run(self):
         """Run the plan to its :data:`Outcome`."""
         steps = self.plan.steps
+        self._journal({'event': 'start', 'mission': self.name, 'steps': len(steps), 'level': self.level})
         if self.level == MANUAL:
             self._say('manual: the plan is shown, nothing runs')
             return self._end('manual', 'plan shown; nothing run (level manual)')
@@ -388,9 +391,11 @@ class Executive(object):
 
     def _say(self, text):
         self.log.append(text)
+        self._journal({'event': 'say', 'step': min(self.step_index + 1, len(self.plan.steps)), 'text': text})
         self._out(text)
 
     def _end(self, status, message):
         self.state = status
         self._say('mission %s: %s' % (status, message))
+        self._journal({'event': 'end', 'status': status, 'message': message})
         return Outcome(status, message, list(self.log))

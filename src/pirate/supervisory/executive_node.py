@@ -18,12 +18,20 @@ and as millimetres along the path (``/pirate/mission/along_mm``), with how
 far it may be off (``/pirate/mission/uncertainty_mm``, the localiser's
 bound), 5 Hz.
 
+The executive's log is written as it goes (pirate.supervisory.mission_log,
+``~log``, default ``$ROS_HOME/pirate/mission_log.jsonl``): at start-up the
+node says how the last mission in it ended, or where it stood if the
+executive died mid-mission; between missions the command ``last`` says it
+again.
+
 Params (private): ``~goal_timeout`` (s of robot time one PAB may take
-before the executive cancels it, default 600).
+before the executive cancels it, default 600); ``~log`` (the log's path).
 """
+import os
 import threading
 
 import actionlib
+import rospkg
 import rospy
 import yaml
 from actionlib_msgs.msg import GoalStatus
@@ -37,7 +45,7 @@ from pirate.sequencer import goals
 from pirate.sequencer.clamp_state import IDLE_CLAMPED
 from pirate.srv import MissionCommand, MissionCommandResponse, ServerStatus
 from pirate.supervisory import executive as ex
-from pirate.supervisory import planner
+from pirate.supervisory import mission_log, planner
 from pirate.supervisory.goal_client_ros import GoalClient
 from pirate.supervisory.localiser import Localiser
 from pirate.supervisory.plan_cli import load_settings
@@ -113,6 +121,10 @@ class MissionExecutiveNode(object):
         self._along_pub = rospy.Publisher(names.MISSION_ALONG_TOPIC, Float64, queue_size=1)
         self._uncertainty_pub = rospy.Publisher(names.MISSION_UNCERTAINTY_TOPIC, Float64, queue_size=1)
         self._markers_pub = rospy.Publisher(names.MISSION_MARKERS_TOPIC, MarkerArray, queue_size=2, latch=True)
+        self._log_path = rospy.get_param('~log', os.path.join(rospkg.get_ros_home(), 'pirate', 'mission_log.jsonl'))
+        rospy.loginfo('mission_executive: %s (log %s)', self._last_mission(), self._log_path)
+        self._log = mission_log.MissionLog(self._log_path)
+        self._log_failed = False
         self._server = actionlib.ActionServer(names.MISSION_ACTION, MissionAction, self._on_goal,
                                               self._on_cancel, auto_start=False)
         rospy.Service(names.MISSION_COMMAND_SERVICE, MissionCommand, self._on_command)
@@ -128,7 +140,8 @@ class MissionExecutiveNode(object):
             pipe_map, route_plan, policy = self._prepare(goal, level)
             run = ex.Executive(route_plan, self.robot, Localiser(pipe_map.points[goal.points[0]], self.settings),
                                self.settings, policy=policy, level=level,
-                               progress=lambda p: self._feedback(handle, p), out=rospy.loginfo)
+                               progress=lambda p: self._feedback(handle, p), out=rospy.loginfo,
+                               journal=self._journal, name='%s: %s' % (goal.map, ' -> '.join(goal.points)))
         except (network.WorldError, planner.PlanError, ValueError, yaml.YAMLError) as refused:
             self._refuse(handle, str(refused))
             return
@@ -152,6 +165,19 @@ class MissionExecutiveNode(object):
         if policy is not None and not isinstance(policy, dict):
             raise ValueError('policy: a mapping {PAB name or default: {retries: N}} is needed, got %r' % policy)
         return pipe_map, route_plan, policy
+
+    def _journal(self, record):
+        """One event into the log on disk; a log that cannot be written costs
+        the copy on disk (said once), never the mission."""
+        try:
+            self._log.write(record)
+        except (OSError, ValueError) as failed:
+            if not self._log_failed:
+                self._log_failed = True
+                rospy.logwarn('mission_executive: cannot write the log %s: %s', self._log_path, failed)
+
+    def _last_mission(self):
+        return mission_log.describe(mission_log.last_ending(mission_log.read(self._log_path)))
 
     @staticmethod
     def _refuse(handle, reason):
@@ -189,7 +215,9 @@ class MissionExecutiveNode(object):
     def _on_command(self, req):
         with self._lock:
             running = self._running
-        if running is None:
+        if running is None and req.command.strip().lower() == 'last':
+            ok, message = True, self._last_mission()
+        elif running is None:
             ok, message, self._next_level = ex.between_missions(req.command, self._next_level)
         else:
             ok, message = running[1].command(req.command)

@@ -92,6 +92,7 @@ class SimpleGoalClient(object):
         self._handle = None
         self._callbacks = {}
         self._called = set()          # callbacks called for this goal, and 'ended' once it ended
+        self._cancel_due = False      # a cancel asked before the server acknowledged the goal
 
     def wait_for_server(self, timeout=rospy.Duration()):
         return self.action_client.wait_for_server(timeout)
@@ -101,7 +102,7 @@ class SimpleGoalClient(object):
         with self._cond:
             self._callbacks = {'done': done_cb, 'active': active_cb, 'feedback': feedback_cb}
             self._called = set()
-            self._handle = None
+            self._handle, self._cancel_due = None, False
             handle = self.action_client.send_goal(goal, transition_cb=self._on_transition, feedback_cb=self._on_feedback)
             self._handle = handle
             self._catch_up()
@@ -139,9 +140,20 @@ class SimpleGoalClient(object):
 
     def cancel_goal(self):
         """Cancel the goal unless it ended: actionlib's handle.cancel() on an
-        ended goal sets it waiting for a cancel ack that never comes."""
+        ended goal sets it waiting for a cancel ack that never comes.
+
+        A goal the server has not acknowledged yet is cancelled once it has
+        (:meth:`_catch_up`): cancelled at once, actionlib's client waits for
+        the cancel's ack and takes the next status array of the server that
+        does not list the goal yet (one sent for another goal, or before
+        this one arrived) for a goal the server lost: it ends LOST, without
+        the result the server then publishes. And the cancel, on its own
+        topic, could reach the server before the goal it cancels.
+        """
         with self._cond:
             handle = self._handle if self._handle is not None and not self._ended() else None
+            if handle is not None and handle.get_comm_state() == actionlib.CommState.WAITING_FOR_GOAL_ACK:
+                self._cancel_due, handle = True, None
         if handle is not None:
             handle.cancel()     # outside our lock: actionlib calls our callbacks holding its own
 
@@ -152,6 +164,10 @@ class SimpleGoalClient(object):
         with self._cond:
             if self._handle is not None and handle == self._handle:
                 self._catch_up()
+                if self._cancel_due and handle.get_comm_state() != actionlib.CommState.WAITING_FOR_GOAL_ACK:
+                    self._cancel_due = False
+                    if not self._ended():
+                        handle.cancel()     # actionlib holds the goal's lock here, in this thread
 
     def _on_feedback(self, handle, feedback):
         with self._cond:

@@ -13,6 +13,7 @@ import math
 import yaml
 
 from pirate.robot import safety
+from pirate.sequencer.pabs import drive
 from pirate.sequencer.goals import CODES as _CODES, OPTION_NAMES, OPTIONS, PAB_FIELDS, PAB_OPTIONS, built
 
 Step = collections.namedtuple('Step', 'pab code pipe_diameter distance speed option')
@@ -127,10 +128,9 @@ class _Checker(object):
             distance = None
         else:
             distance = self.number(fields['distance'], 'distance (mm)')
-        limit = float(self.drive['max_distance'])
-        if distance is not None and (distance == 0 or abs(distance) > limit):
-            self.error(fields['distance'], '%s: distance %g mm outside [-%g, %g] mm and not 0'
-                       % (what, distance, limit, limit))
+        problem = distance is not None and drive.distance_problem(distance, float(self.drive['max_distance']))
+        if problem:
+            self.error(fields['distance'], '%s: %s' % (what, problem))
         speed = 0.0
         if 'speed' in fields:
             speed = self.number(fields['speed'], 'speed (mm/s)')

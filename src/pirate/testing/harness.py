@@ -49,7 +49,7 @@ def view_of(snapshot, stamp):
     """A :class:`RobotView` from a :class:`pirate.state.assembler.Snapshot`."""
     return RobotView(dict(zip(snapshot.name, snapshot.position)), snapshot.orientation,
                      snapshot.odometry, snapshot.velocity, stamp, dict(zip(snapshot.name, snapshot.effort)),
-                     dict(snapshot.part_odometry))
+                     dict(snapshot.part_odometry), snapshot.missed)
 
 
 class SimHarness(object):

@@ -33,6 +33,18 @@ MACHINE = StateMachine(DRIVING, (
 MIN_WAIT_S = 0.01       # s: a wait past the deadline still checks its guard once
 
 
+def distance_problem(distance, limit):
+    """Why a Drive of ``distance`` mm (signed) is refused, or None: beyond
+    +-``limit`` mm, or shorter than the odometry's resolution (one wheel
+    encoder count: 0 mm, and -1e-9 mm, are no drive)."""
+    if not math.isfinite(distance) or abs(distance) > limit:
+        return 'distance %r mm outside [-%.0f, %.0f] mm' % (distance, limit, limit)
+    if abs(distance) < units.WHEEL_MM_PER_COUNT:
+        return ('distance %r mm is no drive: below the odometry\'s resolution, %.3f mm'
+                % (distance, units.WHEEL_MM_PER_COUNT))
+    return None
+
+
 class Drive(Pab):
     """Drive ``goal.distance`` mm (signed) at ``goal.speed`` mm/s."""
 
@@ -51,9 +63,9 @@ class Drive(Pab):
         problem = speed_problem(speed, min(speed, guards.drive['creep_speed']), guards.drive)
         if problem:
             return problem
-        limit = guards.drive['max_distance']
-        if not math.isfinite(goal.distance) or goal.distance == 0 or abs(goal.distance) > limit:
-            return 'drive distance %r mm outside [-%.0f, %.0f] mm and not 0' % (goal.distance, limit, limit)
+        problem = distance_problem(goal.distance, guards.drive['max_distance'])
+        if problem:
+            return 'drive %s' % problem
         return self._corner_refusal(view, guards)
 
     def _corner_refusal(self, view, guards):
