@@ -44,8 +44,6 @@ from pirate.testing.truth import middle, on_each_pab_state, on_pab_state, robot_
 from pirate.world import network
 from test_sequencer_sim import SAFE_INDICES
 
-SPEEDUP = 30.0
-TEE_SPEEDUP = 10.0          # x20 lost 0.3 s of robot state now and then on a loaded machine (bench/mission_sweep)
 WAIT_S = 600.0              # wall bound of a whole mission on a loaded machine
 UPRIGHT = math.pi / 2
 TAKING = 'Taking T-joint'       # the server state of T_JOINT (Fig 4.2)
@@ -88,7 +86,7 @@ def finished(run, worker, out):
 def test_a_route_on_the_twin_runs_to_its_target_and_homes():
     pipe_map = network.load(network.world_path('straight_90'))
     plan = planner.plan(pipe_map, ['pit', 'target'], SETTINGS, MAX_DRIVE_MM, None, True)
-    with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=UPRIGHT + 0.1, seed=7) as h:
+    with SimHarness(world='straight_90', orientation=UPRIGHT + 0.1, seed=7) as h:
         start_m = robot_along_m(pipe_map, h.ground_truth())
         robot, run = executive(plan, h, pipe_map.points['pit'])
         outcome = run.run()
@@ -112,7 +110,7 @@ def test_a_route_through_a_t_joint_reanchors_where_the_front_v_met_it():
     plan = planner.plan(pipe_map, ['launch_pit', 'target'], SETTINGS, MAX_DRIVE_MM, None, True)
     planner.check_runnable(plan)
     tee = planner.junctions(pipe_map)[0]
-    with SimHarness(speedup=TEE_SPEEDUP, world='inspection_tee_90', orientation=UPRIGHT - 0.1, seed=3) as h:
+    with SimHarness(world='inspection_tee_90', orientation=UPRIGHT - 0.1, seed=3) as h:
         at_sensing = []
         on_pab_state(h, TAKING, junction.STOPPING,
                      lambda: at_sensing.append(robot_along_m(pipe_map, h.ground_truth())))
@@ -135,7 +133,7 @@ def test_a_route_through_two_turns_and_a_t_joint_ends_at_its_target():
     pipe_map = network.load(network.world_path('inspection_network_90'))
     plan = planner.plan(pipe_map, ['launch_pit', 'target'], SETTINGS, MAX_DRIVE_MM, None, True)
     planner.check_runnable(plan)
-    with SimHarness(speedup=TEE_SPEEDUP, world='inspection_network_90', orientation=UPRIGHT + 0.15, seed=5) as h:
+    with SimHarness(world='inspection_network_90', orientation=UPRIGHT + 0.15, seed=5) as h:
         robot, run = executive(plan, h, pipe_map.points['launch_pit'])
         at_sensing = {}
         on_each_pab_state(h, junction.SENSED_STATES, lambda: at_sensing.__setitem__(
@@ -165,7 +163,7 @@ def past_one_tee(world, seed):
                                                   {'name': 'target', 'at_mm': TEE_EXIT_MM + 500}]))
     plan = planner.plan(pipe_map, ['pit', 'target'], SETTINGS, MAX_DRIVE_MM, None, True)
     planner.check_runnable(plan)
-    with SimHarness(speedup=TEE_SPEEDUP, world=world, orientation=UPRIGHT + 0.1, seed=seed) as h:
+    with SimHarness(world=world, orientation=UPRIGHT + 0.1, seed=seed) as h:
         robot, run = executive(plan, h, pipe_map.points['pit'])
         outcome = finished(run, *run_in_thread(run))
         return pipe_map, robot, run, outcome, h.ground_truth()
@@ -205,7 +203,7 @@ def shifted_map(first_mm, target_mm):
 def test_a_map_that_disagrees_with_the_pipe_stops_the_mission_safe(world, first_mm, settings, reason, aborted):
     pipe_map = shifted_map(first_mm, first_mm + 600)
     plan = planner.plan(pipe_map, ['pit', 'target'], settings, MAX_DRIVE_MM, None, True)
-    with SimHarness(speedup=TEE_SPEEDUP, world=world, orientation=UPRIGHT) as h:
+    with SimHarness(world=world, orientation=UPRIGHT) as h:
         robot, run = executive(plan, h, pipe_map.points['pit'], settings)
         outcome = finished(run, *run_in_thread(run))
         sent = h.wires['setpoint'].sent[-1][1]
@@ -235,7 +233,7 @@ def test_a_pause_during_the_t_joint_holds_the_robot_safe_and_resume_goes_on_from
     mission stops with that reason, the robot held, nothing more sent."""
     pipe_map = network.load(network.world_path('inspection_tee_90'))
     plan = planner.plan(pipe_map, ['launch_pit', 'target'], SETTINGS, MAX_DRIVE_MM, None, True)
-    with SimHarness(speedup=TEE_SPEEDUP, world='inspection_tee_90', orientation=UPRIGHT) as h:
+    with SimHarness(world='inspection_tee_90', orientation=UPRIGHT) as h:
         robot, run, paused = paused_on(h, plan, pipe_map.points['launch_pit'], TAKING, pause_in)
         worker, out = run_in_thread(run)
         if resumed_pabs is None:
@@ -273,7 +271,7 @@ def test_a_pause_half_round_a_bend_resumes_the_turn_where_it_is(pause_in):
     route ends at its target, judged by the twin's ground truth."""
     pipe_map = network.load(network.world_path('inspection_90'))
     plan = planner.plan(pipe_map, ['launch_pit', 'after_bend'], SETTINGS, MAX_DRIVE_MM, None, True)
-    with SimHarness(speedup=TEE_SPEEDUP, world='inspection_90', orientation=UPRIGHT) as h:
+    with SimHarness(world='inspection_90', orientation=UPRIGHT) as h:
         robot, run, paused = paused_on(h, plan, pipe_map.points['launch_pit'], 'Taking Mitre bend', pause_in)
         worker, out = run_in_thread(run)
         while not paused.wait(1.0) and worker.is_alive():      # a mission that ends instead of waiting
@@ -320,7 +318,7 @@ def test_a_route_through_a_bend_after_a_long_drive_and_past_a_side_tee_needs_no_
     plan = planner.plan(pipe_map, ['launch_pit', 'past_tee'], SETTINGS, MAX_DRIVE_MM, None, True)
     planner.check_runnable(plan)
     tee = planner.junctions(pipe_map)[1]
-    with SimHarness(speedup=TEE_SPEEDUP, world='inspection_90', orientation=UPRIGHT + 0.1, seed=17) as h:
+    with SimHarness(world='inspection_90', orientation=UPRIGHT + 0.1, seed=17) as h:
         robot, run = executive(plan, h, pipe_map.points['launch_pit'])
         outcome = finished(run, *run_in_thread(run))
         truth = h.ground_truth()

@@ -27,7 +27,6 @@ from pirate.state.feed import RobotFeed, RobotView, TimedOut
 
 from test_sequencer_sim import CLAMP_STRAIGHT, DRIVE, run_bounded, wait_robot
 
-SPEEDUP = 40.0
 PANEL_CONFIG = os.path.join(paths.CONFIG_DIR, 'nanokontrol2.yaml')
 HOLD_PWM_INDICES = (1, 2, 3, 6, 7)     # front tilt, Bend I-IV (Table 4.1/4.2)
 WHEELS = 11
@@ -89,7 +88,7 @@ def test_a_silent_board_makes_the_state_stale_naming_it():
 ])
 def test_a_board_silenced_mid_pab_aborts_with_the_safe_hold(board, goal, phase):
     """14.1: with board 22 silent a 50 mm Drive travelled 2 333 mm; a Clamp pressed on."""
-    with SimHarness(speedup=SPEEDUP) as h:
+    with SimHarness() as h:
         if goal['name'] == DRIVE:
             clamped(h)
         thread, result = run_async(h, h.goal(**goal))
@@ -114,7 +113,7 @@ def test_drive_without_odometry_progress_stops():
 
     Every drive board freezes: the odometry is their median
     (pirate.state.odometry), which one dead encoder does not stop."""
-    with SimHarness(speedup=SPEEDUP) as h:
+    with SimHarness() as h:
         clamped(h)
         real = h.model.small_state
         frozen = {}
@@ -145,7 +144,7 @@ def test_drive_never_runs_longer_than_its_profile_plus_margin():
     Here every wheel's odometry reports half the true travel (slipping encoders): progress
     is seen, so only the time bound can stop it."""
     book = GuardBook(*load_files())
-    with SimHarness(speedup=SPEEDUP) as h:
+    with SimHarness() as h:
         clamped(h)
         h.model.small_state = _slow_odometry(h.model.small_state, 0.5)    # half the true travel
         start = h.robot_time
@@ -173,7 +172,7 @@ def _slow_odometry(real, factor):
 
 def test_play_does_not_move_a_position_mode_joint():
     """14.4: Play turned the rotation from 0.30 rad to 0.00 rad."""
-    with SimHarness(speedup=SPEEDUP, joints={'rotation': 0.3}) as h:
+    with SimHarness(joints={'rotation': 0.3}) as h:
         mapper = Mapper(panel_config.load(PANEL_CONFIG), h.setpoint, h.control, h.limit,
                         _NoPab(), lambda *a: None, lambda text: None, time.monotonic)
         assert h.control.mode_of('rotation') == 'position'
@@ -215,7 +214,7 @@ def test_an_impossible_reading_is_dropped(board, element, value):
 
 def test_the_cancel_hold_keeps_the_rotation_when_board_24_lies():
     """14.5 end to end: a bogus rotation reading never steers the hold."""
-    with SimHarness(speedup=SPEEDUP) as h:
+    with SimHarness() as h:
         start = h.model.angle('rotation')
         thread, _ = run_async(h, h.goal(CLAMP_STRAIGHT))
         assert wait_robot(h, lambda: h.server.primitive == 'clamp rear', 20.0)
@@ -298,7 +297,7 @@ def test_a_slow_drive_is_bounded_by_the_speed_its_wheels_turn_at():
     """10 mm/s turns the wheels at 8.3 mm/s (two counts): the drive's time bound was
     planned at the asked 10 mm/s, so a 147 mm drive aborted "not reached within
     16.7 s" at 17.7 s of honest driving. It ends where asked."""
-    with SimHarness(speedup=SPEEDUP) as h:
+    with SimHarness() as h:
         clamped(h)
         reason, outcome = run_bounded(h, h.goal(DRIVE, distance=147.0, speed=10.0))
         assert reason is None and outcome.status == 'succeeded', outcome   # within the 10 mm tolerance
@@ -349,7 +348,7 @@ class _ActivePab(_NoPab):
 
 def test_a_silent_camera_board_stops_no_pab():
     """14.1: only the boards a PAB reads stop it (board 20 is the camera's)."""
-    with SimHarness(speedup=SPEEDUP) as h:
+    with SimHarness() as h:
         h.silent.add(20)
         wait_robot(h, lambda: False, 0.6)
         assert h.assembler.snapshot(h.robot_time).silent == (20,)

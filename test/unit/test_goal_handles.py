@@ -127,7 +127,7 @@ def manager(monkeypatch):
     stop = threading.Event()
     monkeypatch.setattr(manager_node.rospy, 'is_shutdown', stop.is_set)
     monkeypatch.setattr(manager_node.rospy, 'logwarn', lambda *args: None)
-    with SimHarness(speedup=50.0) as sim:
+    with SimHarness() as sim:
         sim.model.step = lambda dt: None        # the robot stands still: no goal ends by itself
         mgr = manager_node.PirateManager.__new__(manager_node.PirateManager)
         mgr.server, mgr.feed = sim.server, sim.feed

@@ -102,7 +102,7 @@ def _yielding(publish):
 def test_the_hold_is_last_on_the_wire_after_stops_at_random_instants():
     rng = random.Random(13)
     stopped, wrong = 0, []
-    with SimHarness(speedup=50.0) as h:
+    with SimHarness() as h:
         for wire in h.wires.values():
             wire.publish = _yielding(wire.publish)
         goal = CLAMP_STRAIGHT
@@ -121,9 +121,7 @@ def test_the_hold_is_last_on_the_wire_after_stops_at_random_instants():
                 goal = HOME if goal == CLAMP_STRAIGHT else CLAMP_STRAIGHT   # ended before the stop
                 continue
             stopped += 1
-            end = h.robot_time + 0.3                          # let the 10 Hz tick run on
-            while h.robot_time < end:
-                threading.Event().wait(0.001)
+            h.run_for(0.3)                                    # let the 10 Hz tick run on
             ok, why = hold_is_last([d for _, d in h.wires['control'].sent],
                                    [d for _, d in h.wires['setpoint'].sent])
             if not ok:

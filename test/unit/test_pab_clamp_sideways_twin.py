@@ -18,7 +18,6 @@ from pirate.testing.harness import SimHarness
 from test_sequencer_sim import assert_ended, run_bounded
 from test_sim_twin_sequencer import assert_clamped_straight, re_adjust_passes, robot_wait
 
-SPEEDUP = 10.0
 CLAMP_SIDEWAYS, LEFT, RIGHT = 1, 1, 2
 APEX_WHEELS = {23, 26}
 
@@ -26,7 +25,7 @@ APEX_WHEELS = {23, 26}
 @pytest.mark.parametrize('mm', [90, 110])
 @pytest.mark.parametrize('option, target', [(RIGHT, 0.0), (LEFT, math.pi)], ids=['RIGHT', 'LEFT'])
 def test_simple_clamp_sideways_on_the_twin(mm, option, target):
-    with SimHarness(speedup=SPEEDUP, world='straight_%d' % mm, orientation=target) as h:
+    with SimHarness(world='straight_%d' % mm, orientation=target) as h:
         reason, outcome = run_bounded(h, h.goal(CLAMP_SIDEWAYS, pipe_diameter=mm, option=option))
         assert_ended(reason, outcome)
         assert re_adjust_passes(h.prims.executed) in (0, 1), h.prims.executed
@@ -44,7 +43,7 @@ def test_non_nominal_clamp_straight_in_110_mm_on_the_twin(roll):
     in 90 mm) Clamp Straight runs with the derived custom clamp and lift
     guards of config/guards_110.yaml and ends clamped straight, both V's on
     the wall (ground truth)."""
-    with SimHarness(speedup=20.0, world='straight_110', orientation=roll) as h:
+    with SimHarness(world='straight_110', orientation=roll) as h:
         reason, outcome = run_bounded(h, h.goal(0, pipe_diameter=110))
         assert_ended(reason, outcome)
         executed = h.prims.executed
@@ -63,7 +62,7 @@ def test_clamp_sideways_from_off_its_side_on_the_twin(start_deg):
     -0.69 measured 0.7 rad off the side); the front custom clamp takes the
     chord's guard within the row's derived within_rad and the goal ends
     clamped at the target, both V's on the wall (ground truth)."""
-    with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=math.radians(start_deg)) as h:
+    with SimHarness(world='straight_90', orientation=math.radians(start_deg)) as h:
         robot_wait(h, 1.0)
         reason, outcome = run_bounded(h, h.goal(CLAMP_SIDEWAYS, pipe_diameter=90, option=LEFT))
         assert_ended(reason, outcome)
@@ -82,7 +81,7 @@ def test_clamp_sideways_in_110_mm_from_off_its_side_on_the_twin():
     the rotation brought it down, 0.29 rad short of the side, and rotate
     front timed out; opened past the chord first (unclamp_partial_sideways)
     the goal ends clamped at the target, both V's on the wall (ground truth)."""
-    with SimHarness(speedup=SPEEDUP, world='straight_110', orientation=math.radians(150)) as h:
+    with SimHarness(world='straight_110', orientation=math.radians(150)) as h:
         robot_wait(h, 1.0)
         reason, outcome = run_bounded(h, h.goal(CLAMP_SIDEWAYS, pipe_diameter=110, option=RIGHT))
         assert_ended(reason, outcome)

@@ -16,19 +16,17 @@ from test_sequencer_sim import run_bounded
 from test_sim_twin_sequencer import CLAMP_STRAIGHT, assert_clamped_straight, robot_wait
 
 DRIVE = 4
-SPEEDUP = 5.0               # the V needs ~1 s of robot time from guard to wall: 200 ms of wall clock for the cancel
 REAR_GUARD = -0.77          # config/guards_90.yaml, clamp outer
 
 
 def test_cancel_past_the_guard_short_of_the_wall_then_retry():
-    with SimHarness(speedup=SPEEDUP, world='straight_90') as h:
+    with SimHarness(world='straight_90') as h:
         goal = h.goal(CLAMP_STRAIGHT)
         assert h.server.reserve(goal) is None
         done = {}
+        h.when(lambda: h.feed.latest().angles['bend_iv'] <= REAR_GUARD - 0.005, h.server.cancel)
         worker = threading.Thread(target=lambda: done.update(o=h.server.run(goal)), daemon=True)
         worker.start()
-        assert h.feed.wait_until(lambda v: v.angles['bend_iv'] <= REAR_GUARD - 0.005, 30.0, 'rear past its guard')
-        h.server.cancel()
         worker.join(30.0)
         assert done['o'].status == 'preempted'
         robot_wait(h, 1.0)
@@ -50,14 +48,13 @@ def test_cancel_with_the_rear_clamped_then_retry_keeps_the_rear(front_outer):
     # Cancelled while clamping the front: the rear is clamped and held by its
     # worms at PWM 0. The retry must not let it go (torque mode at setpoint 0
     # did: the goal "succeeded" with the rear apex off the wall).
-    with SimHarness(speedup=SPEEDUP, world='straight_90') as h:
+    with SimHarness(world='straight_90') as h:
         goal = h.goal(CLAMP_STRAIGHT)
         assert h.server.reserve(goal) is None
+        h.when(lambda: h.prims.executed[-1:] == ['clamp front'] and h.feed.latest().angles['bend_i'] <= front_outer,
+               h.server.cancel)
         worker = threading.Thread(target=h.server.run, args=(goal,), daemon=True)
         worker.start()
-        assert h.feed.wait_until(lambda v: h.prims.executed[-1:] == ['clamp front'] and v.angles['bend_i'] <= front_outer,
-                                 30.0, 'clamping the front')
-        h.server.cancel()
         worker.join(30.0)
         assert 'rear full' in h.server.status()
         reason, outcome = run_bounded(h, goal)

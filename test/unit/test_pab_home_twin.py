@@ -22,7 +22,6 @@ from pirate.sim.twin_robot import ROOT, ROTATIONAL_FRONT
 from test_sequencer_sim import run_bounded
 from test_sim_twin_sequencer import robot_wait
 
-SPEEDUP = 10.0
 CLAMP_STRAIGHT, CLAMP_SIDEWAYS, MITRE_BEND, HOME, LEFT, RIGHT = 0, 1, 3, 5, 1, 2
 REST_M = 0.006          # m: height of the free robot's resting place; Home leaves the bends
                         # at their open guards (up to 0.2 rad), not straight: a few mm of
@@ -76,7 +75,7 @@ START = {
 @pytest.mark.parametrize('start', sorted(START))
 def test_home_from_any_pose(start):
     roll, pose = START[start]
-    with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=roll) as h:
+    with SimHarness(world='straight_90', orientation=roll) as h:
         robot_wait(h, 1.0)
         rest = h.model.body_pose(ROTATIONAL_FRONT)[0]
         pose(h)
@@ -105,7 +104,7 @@ def test_home_after_a_turn_cancelled_while_steering_in_leaves_the_robot_loose():
     57 N (five times the weight) after a Home that read as unclamped; Home
     now leaves that front lifted and says so (bench/junction_turn_resume
     --then home)."""
-    with SimHarness(speedup=SPEEDUP, world='bend_left_90', orientation=math.pi) as h:
+    with SimHarness(world='bend_left_90', orientation=math.pi) as h:
         robot_wait(h, 1.0)
         clamp(h, CLAMP_SIDEWAYS, LEFT)
         goal = h.goal(MITRE_BEND, option=LEFT, distance=800.0)
@@ -137,7 +136,7 @@ def test_home_half_round_a_corner_is_refused_and_the_turn_re_sent_finishes_it():
     finishes, and Home then leaves the robot loose. Before, Home's unclamp
     pushed 15 s against the junction's walls and aborted (bench/
     junction_turn_resume --then home, cancels at 30 and 35 s)."""
-    with SimHarness(speedup=SPEEDUP, world='bend_left_90', orientation=math.pi) as h:
+    with SimHarness(world='bend_left_90', orientation=math.pi) as h:
         robot_wait(h, 1.0)
         clamp(h, CLAMP_SIDEWAYS, LEFT)
         turn, steered_rad = h.goal(MITRE_BEND, option=LEFT, distance=800.0), h.server.book.for_diameter(90).row(

@@ -49,7 +49,6 @@ from pirate.world import network
 from test_sequencer_sim import SAFE_INDICES, STRAIGHT, assert_ended, run_bounded
 from test_sim_twin_sequencer import robot_wait
 
-SPEEDUP = 20.0
 APEX_WHEELS = {23, 26}
 #: rad the robot may settle after a PAB ended (bench/pab_clamp_sweep.straight_within's margin)
 SETTLE_RAD = 0.02
@@ -57,7 +56,6 @@ CROSSING = ['look for the junction', 'stop wheels', 'unclamp front partial', 'dr
             'clamp front', 'unclamp rear partial', 'drive rear across', 'stop wheels', 'clamp rear']
 TURN = ['move front turn', 'unclamp front partial', 'steer front', 'clamp front at the corner', 'swing the middle',
         'bring the rear through', 'clamp rear', 'clamp front', 'drive into the new pipe', 'stop wheels']
-TURN_SPEEDUP = 10.0
 #: The joints between the modules and the rear module's, front to rear (ground truth bodies).
 JOINT_BODIES = ('front_module', 'bend_i_module', 'bend_ii_module', 'rotational_front', 'bend_iii_module',
                 'bend_iv_module', 'rear_module')
@@ -91,7 +89,7 @@ def test_t_joint_straight_on_crosses_the_open_side_and_ends_clamped_past_it():
     world = network.load(network.world_path('tee_run_up_90'))
     tee = world.pieces[1]
     far_edge_x = tee.entry.origin[0] + tee.diameter      # the hole spans one diameter along the run
-    with SimHarness(speedup=SPEEDUP, world='tee_run_up_90') as h:
+    with SimHarness(world='tee_run_up_90') as h:
         clamped_straight(h)
         del h.feedback[:]
         reason, outcome = run_bounded(h, h.goal(codes.T_JOINT, option=codes.STRAIGHT))
@@ -120,7 +118,7 @@ def test_t_joint_straight_on_lying_toward_its_open_side_crosses_it(side, mm):
     option, roll, _ = SIDES[side]
     world = network.load(network.world_path('tee_run_%s_%d' % (side, mm)))
     tee = world.pieces[1]
-    with SimHarness(speedup=SPEEDUP, world=world.name, orientation=roll) as h:
+    with SimHarness(world=world.name, orientation=roll) as h:
         clamped_sideways(h, option, mm)
         goal = h.goal(codes.T_JOINT, pipe_diameter=mm, option=codes.STRAIGHT, speed=50.0, distance=800.0)
         reason, outcome = run_bounded(h, goal)
@@ -148,7 +146,7 @@ def test_t_joint_straight_on_lying_toward_its_open_side_crosses_it(side, mm):
 
 
 def test_no_junction_within_the_distance_aborts_with_junction_missing():
-    with SimHarness(speedup=SPEEDUP, world='straight_90') as h:
+    with SimHarness(world='straight_90') as h:
         clamped_straight(h)
         reason, outcome = run_bounded(h, h.goal(codes.T_JOINT, option=codes.STRAIGHT, distance=150.0))
         assert reason is None and outcome.status == 'aborted'
@@ -162,8 +160,8 @@ def test_no_junction_within_the_distance_aborts_with_junction_missing():
 
 def steps(executed):
     """The primitives a turn ran, each back-off from an edge and the steering
-    it went on with taken out (how often the front stands at an edge depends
-    on the machine's load: the in-process twin paces to the wall clock), and
+    it went on with taken out (how often the front stands at an edge is no
+    part of the turn's sequence), and
     the levelling of the front part (110 mm only) checked and taken out."""
     out = []
     for name in executed:
@@ -188,7 +186,7 @@ def test_a_turn_left_and_right_ends_in_the_new_pipe(pattern, side, mm):
     name, server_state = TURNS[pattern]
     world = network.load(network.world_path(pattern % (side, mm)))
     new_pipe_from = world.pieces[1].diameter / 2          # the new pipe's near wall, off the first pipe's axis
-    with SimHarness(speedup=TURN_SPEEDUP, world=world.name, orientation=roll) as h:
+    with SimHarness(world=world.name, orientation=roll) as h:
         clamped_sideways(h, option, mm)
         del h.feedback[:]
         reason, outcome = run_bounded(h, h.goal(name, mm, option=option, distance=800.0), 120.0)
@@ -211,7 +209,7 @@ def test_a_turn_at_the_goals_speed_steers_and_swings_at_it_and_ends_in_the_new_p
     option, roll, sign = SIDES['right']
     world = network.load(network.world_path('bend_right_90'))
     goal_counts, pull_counts = (units.mm_s_to_wheel_counts(mm_s) for mm_s in (15.0, 80.0))
-    with SimHarness(speedup=TURN_SPEEDUP, world=world.name, orientation=roll) as h:
+    with SimHarness(world=world.name, orientation=roll) as h:
         clamped_sideways(h, option)
         first = len(h.wires['setpoint'].sent)
         reason, outcome = run_bounded(h, h.goal(codes.MITRE_BEND, option=option, distance=800.0, speed=15.0), 120.0)
@@ -228,7 +226,7 @@ def test_a_turn_at_the_goals_speed_steers_and_swings_at_it_and_ends_in_the_new_p
 
 
 def test_no_opening_toward_the_turn_aborts_with_junction_missing():
-    with SimHarness(speedup=TURN_SPEEDUP, world='straight_90', orientation=math.pi) as h:
+    with SimHarness(world='straight_90', orientation=math.pi) as h:
         clamped_sideways(h, codes.LEFT)
         start_mm = h.feed.latest().odometry
         reason, outcome = run_bounded(h, h.goal(codes.MITRE_BEND, option=codes.LEFT, distance=100.0), 120.0)
@@ -242,12 +240,9 @@ def test_no_opening_toward_the_turn_aborts_with_junction_missing():
         assert all(sent[i] == 0 for i in SAFE_INDICES.values()), sent        # the safe hold
 
 
-def wait_for_state(h, state, wall_s=60.0):
-    """Wait (wall-bounded) until the running PAB reports ``state``."""
-    wall_end = time.monotonic() + wall_s
-    while h.server.pab_state != state and time.monotonic() < wall_end:
-        time.sleep(0.005)
-    assert h.server.pab_state == state, h.server.pab_state
+def wait_for_state(h, state, robot_s=120.0):
+    """Wait until the running PAB reports ``state``."""
+    assert h.wait_robot(lambda: h.server.pab_state == state, robot_s), h.server.pab_state
 
 
 def random_instant(up_to_s):
@@ -262,7 +257,7 @@ def clamped_before_the_left_bend():
     (harness, world, the MITRE_BEND LEFT goal looking 800 mm)."""
     option, roll, _ = SIDES['left']
     world = network.load(network.world_path('bend_left_90'))
-    with SimHarness(speedup=TURN_SPEEDUP, world=world.name, orientation=roll) as h:
+    with SimHarness(world=world.name, orientation=roll) as h:
         clamped_sideways(h, option)
         yield h, world, h.goal(codes.MITRE_BEND, option=option, distance=800.0)
 
@@ -366,7 +361,7 @@ ROLLED = [('tee_run_up_90', codes.T_JOINT, codes.STRAIGHT, math.pi / 2, 0.11, CR
 @pytest.mark.parametrize('world, name, option, target, offset, first', ROLLED)
 def test_a_junction_from_a_clamp_rolled_out_of_its_straight_band_re_adjusts_it_first(world, name, option, target,
                                                                                     offset, first):
-    with SimHarness(speedup=TURN_SPEEDUP, world=world, orientation=target + offset) as h:
+    with SimHarness(world=world, orientation=target + offset) as h:
         robot_wait(h, 1.0)
         guards = clamped_where_it_lies(h)
         view = h.feed.latest()

@@ -1,7 +1,7 @@
 """Fast end-to-end tier: the whole sequencer against the FAST FAKE robot.
 
 SimHarness runs the Pirate Server, the PABs and the motion primitives in
-one process (no ROS), the robot paced at SPEEDUP x real time. The robot
+one process (no ROS), the robot in lockstep with the sequencer. The robot
 here is :class:`pirate.sim.fake_robot.FakeRobot`, fitted to the report's
 tables and NOT physics (``fake_harness``): these tests sweep many rolls and
 random cancel instants, which need a fast deterministic robot, and a
@@ -13,7 +13,7 @@ so a hang fails the test instead of blocking it. Checks:
 - cancel at a random (seeded) instant of each experiment: preempted, safe
   setpoints on the wire, and the next goal succeeds;
 - robot state cut mid-PAB: aborted with a message, safe hold on the wire
-  within 500 ms (monotonic) of the last state pushed.
+  within 500 ms (robot time) of the last state pushed.
 """
 import math
 import random
@@ -26,8 +26,6 @@ from pirate.testing.chapter6 import CLAMP_NOMINAL, CLAMP_NON_NOMINAL, CLAMP_SIMP
 from pirate.sim.fake_robot import FakeRobot
 from pirate.testing.harness import SimHarness
 
-SPEEDUP = 40.0
-SWEEP_SPEEDUP = 60.0
 CLAMP_STRAIGHT, DRIVE, HOME = 0, 4, 5
 STRAIGHT = (1.52, 1.62)            # Table 5.4
 HANG_BOUND_S = 30.0                # wall seconds any one goal may take here
@@ -52,9 +50,9 @@ EXPERIMENTS = {
 }
 
 
-def fake_harness(speedup=SPEEDUP, orientation=math.pi / 2, joints=None):
+def fake_harness(orientation=math.pi / 2, joints=None):
     """A SimHarness around the fast fake (fitted to the report, not physics)."""
-    return SimHarness(speedup=speedup, robot=FakeRobot(orientation=orientation, joints=joints))
+    return SimHarness(robot=FakeRobot(orientation=orientation, joints=joints))
 
 
 def roll_straight(rad):
@@ -86,12 +84,8 @@ def assert_ended(reason, outcome, status='succeeded', what=''):
 
 
 def wait_robot(h, condition, robot_s):
-    """Wait (wall bound) until ``condition()`` or ``robot_s`` of robot time pass."""
-    end = h.robot_time + robot_s
-    wall_end = time.monotonic() + 10.0
-    while not condition() and h.robot_time < end and time.monotonic() < wall_end:
-        time.sleep(0.002)
-    return condition()
+    """Wait until ``condition()`` or ``robot_s`` of robot time pass."""
+    return h.wait_robot(condition, robot_s)
 
 
 def assert_clamped_straight(h):
@@ -116,7 +110,7 @@ def assert_safe_on_wire(h):
 
 @pytest.mark.parametrize('degrees', range(0, 360, 15))
 def test_clamp_straight_from_any_orientation(degrees):
-    with fake_harness(SWEEP_SPEEDUP, math.radians(degrees)) as h:
+    with fake_harness(math.radians(degrees)) as h:
         reason, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT))
         assert reason is None, reason
         if outcome.status == 'succeeded':
@@ -127,16 +121,10 @@ def test_clamp_straight_from_any_orientation(degrees):
 
 
 def cancel_later(h, delay_s):
-    """From another thread: after ``delay_s`` wall s, cancel the running goal."""
-    def body():
-        time.sleep(delay_s)          # the random instant itself, not synchronisation
-        end = time.monotonic() + HANG_BOUND_S
-        while not h.server.active and time.monotonic() < end:
-            time.sleep(0.001)        # between two goals of the mission: wait for the next
-        h.server.cancel()
-    thread = threading.Thread(target=body, daemon=True)
-    thread.start()
-    return thread
+    """Cancel the running goal once ``delay_s`` of robot time passed (in the
+    next goal when it falls between two goals of a mission)."""
+    at = h.robot_time + delay_s
+    h.when(lambda: h.robot_time >= at and h.server.active, h.server.cancel)
 
 
 #: Robot seconds each experiment takes in the model (measured, rounded down).
@@ -148,16 +136,15 @@ DURATION_S = {'simple': 11.0, 'nominal': 24.0, 'non_nominal_right': 45.0, 'non_n
 def test_cancel_at_a_random_instant(experiment):
     orientation, steps = EXPERIMENTS[experiment]
     rng = random.Random('cancel-%s' % experiment)
-    delay = rng.uniform(0.02, 0.9) * DURATION_S[experiment] / SPEEDUP
-    with fake_harness(SPEEDUP, orientation) as h:
-        canceller = cancel_later(h, delay)
+    delay = rng.uniform(0.02, 0.9) * DURATION_S[experiment]
+    with fake_harness(orientation) as h:
+        cancel_later(h, delay)
         outcomes = []
         for kwargs, _ in steps:
             _, outcome = run_bounded(h, h.goal(**kwargs))
             outcomes.append(outcome)
             if outcome.status != 'succeeded':
                 break
-        canceller.join(HANG_BOUND_S)
         assert outcomes[-1].status == 'preempted', (delay, outcomes)
         assert 'cancelled' in outcomes[-1].message
         assert h.server.active is None
@@ -176,14 +163,14 @@ def test_clamp_straight_after_a_cancelled_non_nominal_clamp():
     A new Clamp Straight must clamp straight from here."""
     joints = {'front_tilt': 0.316, 'bend_i': -0.892, 'bend_ii': 0.446, 'rotation': 0.171,
               'bend_iii': 0.166, 'bend_iv': -0.686}
-    with fake_harness(SWEEP_SPEEDUP, 1.742, joints) as h:
+    with fake_harness(1.742, joints) as h:
         _, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT))
         assert outcome.status == 'succeeded', (outcome.message, h.prims.executed)
         assert_clamped_straight(h)
 
 
 class Recorder(object):
-    """Wall (monotonic) time of the last state pushed and of the safe hold on the wire."""
+    """Robot time of the last state pushed and of the safe hold on the wire."""
 
     def __init__(self, h):
         self.last_push = None
@@ -192,7 +179,7 @@ class Recorder(object):
 
         def record_push(view):
             if not h.frozen:
-                self.last_push = time.monotonic()
+                self.last_push = h.robot_time
             push(view)
 
         def record_hold():
@@ -209,7 +196,7 @@ def test_a_late_robot_thread_is_not_a_silent_robot():
     come late in wall time but on time in robot time. The goal must not
     abort with "no robot state" (CI did, at 0.32 s); the stall is made by
     holding the robot's lock for twice the feedback timeout mid-clamp."""
-    with fake_harness(SPEEDUP, 1.45) as h:
+    with fake_harness(1.45) as h:
         ended = {}
         worker = threading.Thread(target=lambda: ended.update(outcome=run_bounded(h, h.goal(CLAMP_STRAIGHT))[1]),
                                   daemon=True)
@@ -228,15 +215,13 @@ def test_a_late_robot_thread_is_not_a_silent_robot():
 def test_feedback_loss_mid_pab(orientation, goals):
     """The robot stops reporting at a random instant of the last goal."""
     rng = random.Random('feedback-%s' % orientation)
-    with fake_harness(SPEEDUP, orientation) as h:
+    with fake_harness(orientation) as h:
         for kwargs in goals[:-1]:
             assert run_bounded(h, h.goal(**kwargs))[1].status == 'succeeded'
         recorder = Recorder(h)
-        delay = rng.uniform(0.1, 0.8) * 0.3   # within the first 10 robot s of the last goal
-        timer = threading.Timer(delay, lambda: setattr(h, 'frozen', True))
-        timer.start()
+        at = h.robot_time + rng.uniform(0.1, 0.8) * 10.0   # within the first 10 robot s of the last goal
+        h.when(lambda: h.robot_time >= at, lambda: setattr(h, 'frozen', True))
         _, outcome = run_bounded(h, h.goal(**goals[-1]))
-        timer.join()
         assert outcome.status == 'aborted', outcome
         assert 'no robot state' in outcome.message
         assert_safe_on_wire(h)

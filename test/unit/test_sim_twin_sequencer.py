@@ -9,7 +9,6 @@ only); a cancel ends with the safe hold on the wire and the joints held by
 the worm gears."""
 import math
 import threading
-import time
 
 import pytest
 
@@ -19,16 +18,14 @@ from pirate.testing.harness import SimHarness
 from pirate.sim.twin_robot import ROTATIONAL_FRONT
 from test_sequencer_sim import EXPERIMENTS, SAFE_INDICES, STRAIGHT, assert_ended, run_bounded
 
-SPEEDUP = 30.0
 CLAMP_STRAIGHT = 0
 
 
 def robot_wait(h, robot_s):
-    """Let ``robot_s`` seconds of robot time pass (wall-bounded)."""
-    end, wall_end = h.robot_time + robot_s, time.monotonic() + 30.0
-    while h.robot_time < end and time.monotonic() < wall_end:
-        time.sleep(0.01)
-    assert h.robot_time >= end
+    """Let ``robot_s`` seconds of robot time pass."""
+    end = h.robot_time + robot_s
+    h.run_for(robot_s)
+    assert h.robot_time >= end - 1e-9
 
 
 def assert_clamped_straight(h):
@@ -50,7 +47,7 @@ def re_adjust_passes(executed):
 
 @pytest.mark.parametrize('world', ['straight_90', 'straight_110'])
 def test_simple_clamp_straight_on_the_twin(world):
-    with SimHarness(speedup=SPEEDUP, world=world, orientation=math.pi / 2) as h:
+    with SimHarness(world=world, orientation=math.pi / 2) as h:
         reason, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT, pipe_diameter=int(world.rsplit('_', 1)[1])))
         assert_ended(reason, outcome)
         assert h.prims.executed == CLAMP_SIMPLE
@@ -61,7 +58,7 @@ def test_nominal_re_adjust_on_the_twin():
     """Start at 1.45 rad (Table 6.2): the report's nine primitives, then
     the same re-adjust pass again while the roll is outside the straight
     tolerance (the twin's clamped V tilts when the other part unclamps), ending clamped straight."""
-    with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=1.45) as h:
+    with SimHarness(world='straight_90', orientation=1.45) as h:
         reason, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT))
         assert_ended(reason, outcome)
         assert re_adjust_passes(h.prims.executed) >= 1, h.prims.executed
@@ -76,7 +73,7 @@ def test_non_nominal_on_the_twin(orientation):
     then Table 6.2's last pass (the twin: 2-3 passes; the custom-clamped
     front rolls while the rear turns),
     ending clamped straight."""
-    with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=orientation) as h:
+    with SimHarness(world='straight_90', orientation=orientation) as h:
         reason, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT), bound=60.0)
         assert_ended(reason, outcome)
         passes = pass_counts(h.prims.executed, CLAMP_NON_NOMINAL, [ANY_RE_ADJUST])
@@ -86,7 +83,7 @@ def test_non_nominal_on_the_twin(orientation):
 
 def test_report_test_mission_on_the_twin():
     _, steps = EXPERIMENTS['mission']
-    with SimHarness(speedup=SPEEDUP, world='straight_90') as h:
+    with SimHarness(world='straight_90') as h:
         start_x = h.model.body_pose(ROTATIONAL_FRONT)[0][0]
         for kwargs, expected in steps:
             reason, outcome = run_bounded(h, h.goal(**kwargs))
@@ -101,7 +98,7 @@ def test_report_test_mission_on_the_twin():
 
 
 def test_cancel_mid_clamp_leaves_the_safe_hold_and_the_pose_held():
-    with SimHarness(speedup=SPEEDUP, world='straight_90') as h:
+    with SimHarness(world='straight_90') as h:
         h.server.reserve(h.goal(CLAMP_STRAIGHT))
         done = {}
         worker = threading.Thread(target=lambda: done.update(o=h.server.run(h.goal(CLAMP_STRAIGHT))), daemon=True)
@@ -125,7 +122,7 @@ def test_a_partial_unclamp_leaves_an_open_v_and_the_clamped_part_holds_its_roll(
     (here: the rotate to -0.7 rad timed out) or, lying half on a side,
     rolled the clamped part by 0.2 rad per 1.4 rad turned. Held by the
     worms (PWM 0) the V stays open and the clamped part keeps its roll."""
-    with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=math.pi / 2) as h:
+    with SimHarness(world='straight_90', orientation=math.pi / 2) as h:
         h.prims.use(h.server.book.for_diameter(90))
         h.start_robot()
         for primitive in (lambda: h.prims.move_front('move_front'), lambda: h.prims.clamp('rear'),
@@ -145,7 +142,7 @@ def test_a_clamp_with_a_wider_pipes_guards_says_it_stood_on_the_wall_short_of_th
     at about -1.02 rad, short of the 110 mm guard (-1.25), and stands there
     until the primitive's timeout. The abort says so, with the angle it
     stood at and the guards it was judged by, and leaves the safe hold."""
-    with SimHarness(speedup=SPEEDUP, world='straight_90', orientation=math.pi / 2) as h:
+    with SimHarness(world='straight_90', orientation=math.pi / 2) as h:
         robot_wait(h, 1.0)
         reason, outcome = run_bounded(h, h.goal(CLAMP_STRAIGHT, pipe_diameter=110))
         assert_ended(reason, outcome, 'aborted')

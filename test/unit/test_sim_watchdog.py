@@ -4,8 +4,6 @@ Before, the simulated robot kept executing after the manager died, unlike
 the firmware (firmware/PirateBay/bridge.h: no setpoint array for 250 ms ->
 every board STOP, until a new setpoint array).
 """
-import threading
-
 from pirate.robot import tables
 from pirate.testing.harness import SimHarness
 from pirate.sim.watchdog import WATCHDOG_S, MegaWatchdog
@@ -31,21 +29,14 @@ def test_watchdog_arms_on_a_setpoint_and_trips_after_its_timeout():
 
 def test_the_simulated_robot_stops_when_the_setpoint_stream_stops():
     """The manager dies mid-drive: the wheels stop within the watchdog, no STOP sent."""
-    with SimHarness(speedup=1.0) as h:
+    with SimHarness() as h:
         h.start_robot()
         h.control.set_mode('wheels', 'velocity')
         h.setpoint.set('wheels', 20)
-        assert _wait(lambda: h.wheel_mm_s() > 10.0, 5.0), h.wheel_mm_s()       # unclamped, on the floor
+        assert h.wait_robot(lambda: h.wheel_mm_s() > 10.0, 5.0), h.wheel_mm_s()       # unclamped, on the floor
         h.setpoint.enabled = False                 # the 10 Hz stream ends: the manager is gone
-        assert _wait(lambda: not h.model.running, WATCHDOG_S + 1.0)
+        stopped_at = h.robot_time
+        assert h.wait_robot(lambda: not h.model.running, WATCHDOG_S + 1.0)
+        assert h.robot_time - stopped_at <= WATCHDOG_S + 0.1 + 1e-9     # within the next Mega cycle
         assert h.watchdog.trips == 1
-        assert _wait(lambda: h.wheel_mm_s() < 1.0, 2.0), h.wheel_mm_s()
-
-
-def _wait(condition, timeout_s):
-    done = threading.Event()
-    for _ in range(int(timeout_s / 0.01)):
-        if condition():
-            return True
-        done.wait(0.01)
-    return condition()
+        assert h.wait_robot(lambda: h.wheel_mm_s() < 1.0, 2.0), h.wheel_mm_s()

@@ -120,7 +120,7 @@ def test_the_settled_robot_rests_on_the_floor_holding_the_pose():
 
 def test_clamp_straight_from_a_moved_pose_ends_clamped():
     """Set on the lying robot, this pose started 22 mm inside the wall and the clamp aborted."""
-    with SimHarness(speedup=20, world='straight_90', orientation=UPRIGHT, joints=REAR_V_REVERSED) as h:
+    with SimHarness(world='straight_90', orientation=UPRIGHT, joints=REAR_V_REVERSED) as h:
         reason, outcome = h.execute(h.goal(0, pipe_diameter=90))
         assert reason is None and outcome.status == 'succeeded', (reason, outcome and outcome.message)
         assert APEX_WHEELS <= set(h.ground_truth()['wheel_contacts'])

@@ -18,7 +18,10 @@ state, on cancel, and a few times a second to check two clocks:
 The watchdog's silence is measured on ``robot_clock`` (default: the wall
 clock): for a simulated robot, simulated time, which the simulator advances
 in lockstep with the stack (doc/clock.md), so a late stack or simulator is
-not taken for a silent robot.
+not taken for a silent robot. ``wait(cond, poll_s)`` is how a wait sleeps
+between its checks (default: ``poll_s`` of the wall clock); the in-process
+twin (pirate.testing.harness) passes its own, which returns at the robot's
+next cycle.
 
 Pure Python: no ROS; the manager pushes states in.
 """
@@ -40,6 +43,10 @@ RobotView = collections.namedtuple('RobotView',
                                    defaults=(None, None, ()))
 
 POLL_S = 0.02
+
+
+def _wall_wait(cond, poll_s):
+    cond.wait(poll_s)
 
 
 class Interrupted(Exception):
@@ -65,11 +72,12 @@ class SensorFrozen(FeedbackLost):
 class RobotFeed(object):
     """Newest :data:`RobotView`, cancel flag, and guard waiting."""
 
-    def __init__(self, feedback_timeout=0.3, clock=time.monotonic, wall_factor=2.0, robot_clock=None):
+    def __init__(self, feedback_timeout=0.3, clock=time.monotonic, wall_factor=2.0, robot_clock=None, wait=None):
         self.feedback_timeout = feedback_timeout
         self.wall_factor = wall_factor
         self._clock = clock
         self._robot_clock = robot_clock or clock
+        self._wait = wait or _wall_wait
         self._cond = threading.Condition()
         self._latest = None
         self._arrival = -math.inf
@@ -172,4 +180,4 @@ class RobotFeed(object):
                 if self._clock() > wall_end:
                     raise TimedOut('%s not reached within %.1f s of wall clock (%.0f x its %.1f s)'
                                    % (describe, self.wall_factor * timeout, self.wall_factor, timeout))
-                self._cond.wait(POLL_S)
+                self._wait(self._cond, POLL_S)

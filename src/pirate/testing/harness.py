@@ -2,25 +2,26 @@
 
 Same objects as the ROS stack (Setpoint/Control/Limit, StateAssembler,
 RobotFeed, MotionPrimitives, PirateServer), the topics replaced by direct
-calls. A robot thread steps the model and pushes a state every Mega cycle
-(0.1 s of robot time), pacing itself at ``speedup`` times real time, so the
-wall-clock feedback watchdog behaves as with a real robot. Used by the fast
-test tier and the benchmarks; the rostests cover the ROS wiring.
+calls. A robot thread steps the model one Mega cycle (0.1 s of robot time,
+5 PICO steps) at a time and pushes its state, in lockstep with the
+sequencer (:mod:`pirate.testing.lockstep`): a cycle starts only when every
+consumer of the robot's state waits for the next one, so a run is the same
+on a busy host as on an idle one, and runs as fast as the CPU allows. Every
+clock above the robot reads robot time (``SimHarness.clock``): the
+feedback watchdog, the primitives' timeouts, the Mega's watchdog, the
+state node's silent boards. Used by the fast test tier and the benchmarks;
+the rostests cover the ROS wiring.
 
-The feedback watchdog and the Mega's watchdog measure silence on
-``SimHarness.clock``, a :class:`pirate.state.robot_clock.RobotClock` ticked
-by every robot cycle: on a loaded machine a simulated robot that falls behind its
-pacing is late, not silent (CI saw "no robot state for 0.32 s" from a robot
-thread that was merely descheduled); a robot that steps on time but reports
-nothing (``frozen``, a silent board) is still noticed after the same wall
-time as a real one.
+Robot time passes only while someone waits for it: a goal run by
+:meth:`SimHarness.execute` (it takes part for its whole run), or
+:meth:`SimHarness.wait_robot` / :meth:`SimHarness.run_for`. An action at a
+robot instant (a cancel, a fault) goes in :meth:`SimHarness.when`: it runs
+between two cycles, while every consumer waits.
 """
 import threading
-import time
 
 from pirate.robot import commands, tables
 from pirate.state.feed import RobotFeed, RobotView
-from pirate.state.robot_clock import RobotClock
 from pirate.sequencer.guards import GuardBook, load_files
 from pirate.sequencer.primitives import MotionPrimitives
 from pirate.sequencer.server import PirateServer
@@ -28,20 +29,23 @@ from pirate.sim import twin_robot
 from pirate.sim.robot_end import make_robot
 from pirate.sim.watchdog import MegaWatchdog
 from pirate.state.assembler import BadState, StateAssembler, pab_blocker
+from pirate.testing.lockstep import Lockstep
 
 PICO_PERIOD_S = 0.02
 STEPS_PER_CYCLE = 5
+START_S = 1.0                   # robot time of the first cycle's start
 
 
 class _Wire(object):
-    """A publisher that records what went out and hands it to the robot."""
+    """A publisher that records what went out (robot time, data) and hands it to the robot."""
 
-    def __init__(self, on_publish):
+    def __init__(self, clock, on_publish):
         self.sent = []
+        self._clock = clock
         self._on_publish = on_publish
 
     def publish(self, data):
-        self.sent.append((time.monotonic(), list(data)))
+        self.sent.append((self._clock(), list(data)))
         self._on_publish()
 
 
@@ -59,21 +63,19 @@ class SimHarness(object):
     pipe of ``pipe_diameter``); a unit test that needs the fast fake passes
     ``robot=FakeRobot(...)`` (:mod:`pirate.sim.fake_robot`) instead."""
 
-    def __init__(self, speedup=20.0, feedback_timeout=None, robot=None, **model_args):
+    def __init__(self, feedback_timeout=None, robot=None, **model_args):
         self.model = robot if robot is not None else make_robot(**model_args)
-        self.speedup = speedup
         self._lock = threading.RLock()
         self.watchdog = MegaWatchdog()
-        self.robot_time = 1.0
-        self.clock = RobotClock()
-        self.wires = {name: _Wire(lambda name=name: self._apply(name))
+        self.clock = Lockstep(START_S, PICO_PERIOD_S * STEPS_PER_CYCLE)
+        self.wires = {name: _Wire(self.clock, lambda name=name: self._apply(name))
                       for name in ('setpoint', 'control', 'limit')}
         self.control = commands.Control(self.wires['control'], list)
         self.setpoint = commands.Setpoint(self.wires['setpoint'], list, self.control)
         self.limit = commands.Limit(self.wires['limit'], list)
         book = GuardBook(*load_files())
-        self.feed = RobotFeed(feedback_timeout or book.common['feedback_timeout'],
-                              wall_factor=book.common['wall_timeout_factor'], robot_clock=self.clock)
+        self.feed = RobotFeed(feedback_timeout or book.common['feedback_timeout'], clock=self.clock,
+                              wall_factor=book.common['wall_timeout_factor'], wait=self.clock.wait)
         self.setpoint.measured = lambda: self.feed.latest().angles if self.feed.fresh() else None
         self.prims = MotionPrimitives(self.setpoint, self.control, self.limit, self.feed)
         self.feedback = []
@@ -83,8 +85,15 @@ class SimHarness(object):
         self.assembler = StateAssembler()
         self.frozen = False           # True: the robot stops reporting
         self.silent = set()           # boards that stop answering (the Mega skips them)
-        self._stop = threading.Event()
+        self.failure = None           # what stopped the robot thread, if it failed
+        self._due = []                # (condition, action) of :meth:`when`
+        self._ticks = threading.Condition()
         self._thread = threading.Thread(target=self._robot_loop, daemon=True)
+
+    @property
+    def robot_time(self):
+        """Robot seconds now (the end of the last cycle)."""
+        return self.clock()
 
     def start_robot(self):
         """What the manager does when a goal starts: PLAY and paced arrays."""
@@ -100,29 +109,66 @@ class SimHarness(object):
                                self.limit.get_all())
 
     def _robot_loop(self):
-        wall_next = time.monotonic()
-        while not self._stop.is_set():
-            if self.watchdog.poll(self.clock()):
-                self._apply()
-            with self._lock:
-                for _ in range(STEPS_PER_CYCLE):
-                    self.model.step(PICO_PERIOD_S)
-                self.robot_time += PICO_PERIOD_S * STEPS_PER_CYCLE
-                states = [(b, self.model.small_state(b)) for b in tables.BOARDS]
-            self.clock.tick()
-            if not self.frozen:
-                self._report([(b, d) for b, d in states if b not in self.silent])
-            self.setpoint.tick()       # the manager's 10 Hz timer, robot time
-            self.limit.tick()
-            wall_next += PICO_PERIOD_S * STEPS_PER_CYCLE / self.speedup
-            time.sleep(max(0.0, wall_next - time.monotonic()))
+        try:
+            while self.clock.await_consumers():
+                if self._run_due():
+                    self.clock.nudge()
+                else:
+                    self._cycle()
+        except Exception as failure:  # pylint: disable=broad-except; the goal must end, not hang
+            self.failure = failure
+            self.feed.lose('the simulated robot failed: %r' % failure)
+            self.clock.close()
+
+    def _cycle(self):
+        """One Mega cycle, while every consumer waits: the manager's 10 Hz
+        timer sends what the sequencer wrote for the last state, the model
+        steps 0.1 s, the new state is reported."""
+        self.setpoint.tick()
+        self.limit.tick()
+        if self.watchdog.poll(self.clock()):
+            self._apply()
+        with self._lock:
+            for _ in range(STEPS_PER_CYCLE):
+                self.model.step(PICO_PERIOD_S)
+            states = [(b, self.model.small_state(b)) for b in tables.BOARDS]
+        self.clock.advance()
+        if not self.frozen:
+            self._report([(b, d) for b, d in states if b not in self.silent])
+        self.clock.wake()
+
+    def _run_due(self):
+        """Run the actions of :meth:`when` whose condition holds; True when one ran."""
+        due = [entry for entry in self._due if entry[0]()]
+        for entry in due:
+            self._due.remove(entry)
+            entry[1]()
+        return bool(due)
+
+    def when(self, condition, action):
+        """Call ``action()`` before the first cycle at which ``condition()``
+        holds (checked between cycles, every consumer waiting): a cancel or a
+        fault at a robot instant, the same in every run."""
+        self._due.append((condition, action))
+
+    def wait_robot(self, condition, robot_s):
+        """Wait as a consumer until ``condition()`` holds or ``robot_s`` of
+        robot time passed; return ``condition()``."""
+        end = self.clock() + robot_s - 1e-9
+        with self._ticks:
+            while not condition() and self.clock() < end and self.failure is None:
+                self.clock.wait(self._ticks, 0.1)
+        return condition()
+
+    def run_for(self, robot_s):
+        """Let the robot run ``robot_s`` of robot time (nothing else waiting for it)."""
+        self.wait_robot(lambda: False, robot_s)
 
     def _report(self, states):
         """What the state node and the manager do with one Mega cycle.
 
-        The assembler's clock is robot time here, so a silent board is
-        noticed after the same robot time at any speedup (the state node
-        uses the wall clock, which is robot time on the robot).
+        The assembler's clock is robot time here (the state node uses the
+        wall clock, which is robot time on the robot).
         """
         now = self.robot_time
         for board, data in states:
@@ -139,14 +185,15 @@ class SimHarness(object):
 
     def __enter__(self):
         self._thread.start()
-        deadline = time.monotonic() + 5.0
-        while self.feed.latest() is None and time.monotonic() < deadline:
-            time.sleep(0.001)
+        self.wait_robot(lambda: self.feed.latest() is not None, 5.0)
         return self
 
     def __exit__(self, *exc):
-        self._stop.set()
-        self._thread.join(2.0)
+        self.clock.close()
+        self._thread.join(10.0)
+        self.feed.lose('the simulated robot stopped')
+        if self.failure is not None and exc[0] is None:
+            raise self.failure
 
     def ground_truth(self):
         """The twin's ground truth (tests and benchmarks only), consistent
@@ -171,11 +218,13 @@ class SimHarness(object):
         return _Goal(name, pipe_diameter, distance, speed, option)
 
     def execute(self, goal):
-        """Reserve and run ``goal``: (reason refused, None) or (None, Outcome)."""
-        reason = self.server.reserve(goal)
-        if reason:
-            return reason, None
-        return None, self.server.run(goal)
+        """Reserve and run ``goal``: (reason refused, None) or (None, Outcome).
+        The calling thread takes part in the lockstep for the whole run."""
+        with self.clock.taking_part():
+            reason = self.server.reserve(goal)
+            if reason:
+                return reason, None
+            return None, self.server.run(goal)
 
 
 class _Goal(object):

@@ -1,0 +1,115 @@
+"""Robot time of an in-process simulated robot that runs in lockstep with the sequencer.
+
+Software-in-the-loop as ArduPilot's and PX4's SITL run their controller
+with the simulator: the robot advances one cycle only when every consumer
+of its state has taken the last one and waits for the next, so a run is a
+function of its inputs alone. A busy host slows it, never changes it; an
+idle one runs it as fast as the CPU allows.
+
+A consumer is a thread that waits through :meth:`Lockstep.wait` (the
+feed's guard waits, a test waiting for robot time to pass): it counts while
+it waits. Inside :meth:`Lockstep.taking_part` it counts between its waits
+too, so the robot stands still while it works on a state (a goal's whole
+run). With no consumer the robot stands still: robot time passes only while
+someone waits for it.
+
+Pure Python, no ROS; the robot side is :meth:`Lockstep.await_consumers`,
+:meth:`Lockstep.advance`, :meth:`Lockstep.wake` and :meth:`Lockstep.nudge`.
+"""
+import contextlib
+import threading
+
+
+class Lockstep(object):
+    """Robot seconds (call it), advanced ``cycle_s`` a cycle from ``start_s``."""
+
+    def __init__(self, start_s, cycle_s):
+        self._start_s, self._cycle_s = start_s, cycle_s
+        self._lock = threading.Condition()
+        self._cycle = 0
+        self._epoch = 0             # a new cycle, or something else every consumer must see
+        self._waiting = {}          # thread id -> (condition it waits on, epoch it waits after)
+        self._members = {}          # thread id -> depth of its taking_part blocks
+        self._closed = False
+
+    def __call__(self):
+        return self._start_s + self._cycle * self._cycle_s
+
+    # --- consumers ---------------------------------------------------------
+    @contextlib.contextmanager
+    def taking_part(self):
+        """The calling thread counts as a consumer for the block: the robot
+        waits for it while it works between its waits."""
+        me = threading.get_ident()
+        with self._lock:
+            self._members[me] = self._members.get(me, 0) + 1
+        try:
+            yield
+        finally:
+            with self._lock:
+                self._members[me] -= 1
+                if not self._members[me]:
+                    del self._members[me]
+                self._lock.notify_all()
+
+    def wait(self, cond, poll_s=None):
+        """Wait on ``cond`` (held by the caller) until it is notified or the
+        robot's next cycle; ``poll_s`` (wall s) only once the robot stopped."""
+        if self._closed:
+            cond.wait(poll_s)
+            return
+        me = threading.get_ident()
+        with self._lock:
+            self._waiting[me] = (cond, self._epoch)
+            self._lock.notify_all()
+        try:
+            cond.wait()
+        finally:
+            with self._lock:
+                del self._waiting[me]
+
+    # --- the robot ---------------------------------------------------------
+    def await_consumers(self):
+        """Block until every consumer waits on the newest epoch; False once closed."""
+        with self._lock:
+            while not self._closed and not self._ready():
+                self._lock.wait()
+            return not self._closed
+
+    def _ready(self):
+        if not self._waiting:
+            return False
+        if any(self._waiting.get(member, (None, -1))[1] != self._epoch for member in self._members):
+            return False
+        return all(epoch == self._epoch for _, epoch in self._waiting.values())
+
+    def advance(self):
+        """One cycle of robot time passed (:meth:`wake` the consumers after its state)."""
+        with self._lock:
+            self._cycle += 1
+            self._epoch += 1
+
+    def nudge(self):
+        """Something happened between two cycles (a cancel): the robot waits
+        until every consumer has seen it and waits again."""
+        with self._lock:
+            self._epoch += 1
+        self.wake()
+
+    def wake(self):
+        """Wake the consumers still waiting on an earlier epoch."""
+        with self._lock:
+            stale = [cond for cond, epoch in self._waiting.values() if epoch < self._epoch]
+        for cond in stale:
+            with cond:
+                cond.notify_all()
+
+    def close(self):
+        """The robot stopped: no consumer waits for it any more."""
+        with self._lock:
+            self._closed = True
+            self._lock.notify_all()
+            waiting = [cond for cond, _ in self._waiting.values()]
+        for cond in waiting:
+            with cond:
+                cond.notify_all()
