@@ -46,7 +46,7 @@ def run_async(h, goal):
     reason = h.server.reserve(goal)
     assert reason is None, reason
     result = {}
-    thread = threading.Thread(target=lambda: result.update(outcome=h.server.run(goal)), daemon=True)
+    thread = threading.Thread(target=lambda: result.update(outcome=h.execute_reserved(goal)), daemon=True)
     thread.start()
     return thread, result
 

@@ -110,7 +110,7 @@ def test_the_hold_is_last_on_the_wire_after_stops_at_random_instants():
             reason = h.server.reserve(h.goal(goal))
             assert reason is None, reason
             result = {}
-            worker = threading.Thread(target=lambda g=h.goal(goal): result.update(o=h.server.run(g)))
+            worker = threading.Thread(target=lambda g=h.goal(goal): result.update(o=h.execute_reserved(g)))
             worker.start()
             threading.Event().wait(rng.uniform(0.0, 0.03))     # the random instant (wall)
             how = rng.choice(('stop', 'cancel'))

@@ -25,7 +25,7 @@ def test_cancel_past_the_guard_short_of_the_wall_then_retry():
         assert h.server.reserve(goal) is None
         done = {}
         h.when(lambda: h.feed.latest().angles['bend_iv'] <= REAR_GUARD - 0.005, h.server.cancel)
-        worker = threading.Thread(target=lambda: done.update(o=h.server.run(goal)), daemon=True)
+        worker = threading.Thread(target=lambda: done.update(o=h.execute_reserved(goal)), daemon=True)
         worker.start()
         worker.join(30.0)
         assert done['o'].status == 'preempted'
@@ -53,7 +53,7 @@ def test_cancel_with_the_rear_clamped_then_retry_keeps_the_rear(front_outer):
         assert h.server.reserve(goal) is None
         h.when(lambda: h.prims.executed[-1:] == ['clamp front'] and h.feed.latest().angles['bend_i'] <= front_outer,
                h.server.cancel)
-        worker = threading.Thread(target=h.server.run, args=(goal,), daemon=True)
+        worker = threading.Thread(target=h.execute_reserved, args=(goal,), daemon=True)
         worker.start()
         worker.join(30.0)
         assert 'rear full' in h.server.status()

@@ -39,7 +39,7 @@ def clamp(h, name, option=0):
 def partly(h):
     goal = h.goal(CLAMP_STRAIGHT)
     assert h.server.reserve(goal) is None
-    worker = threading.Thread(target=h.server.run, args=(goal,), daemon=True)
+    worker = threading.Thread(target=h.execute_reserved, args=(goal,), daemon=True)
     worker.start()
     assert h.feed.wait_until(lambda v: v.angles['bend_iv'] < -0.4, 30.0, 'rear half clamped')
     h.server.cancel()
@@ -109,7 +109,7 @@ def test_home_after_a_turn_cancelled_while_steering_in_leaves_the_robot_loose():
         clamp(h, CLAMP_SIDEWAYS, LEFT)
         goal = h.goal(MITRE_BEND, option=LEFT, distance=800.0)
         assert h.server.reserve(goal) is None
-        worker = threading.Thread(target=h.server.run, args=(goal,), daemon=True)
+        worker = threading.Thread(target=h.execute_reserved, args=(goal,), daemon=True)
         worker.start()
         robot_wait(h, 20.0)
         h.server.cancel()
@@ -142,7 +142,7 @@ def test_home_half_round_a_corner_is_refused_and_the_turn_re_sent_finishes_it():
         turn, steered_rad = h.goal(MITRE_BEND, option=LEFT, distance=800.0), h.server.book.for_diameter(90).row(
             'turn')['steered_rad']
         assert h.server.reserve(turn) is None
-        worker = threading.Thread(target=h.server.run, args=(turn,), daemon=True)
+        worker = threading.Thread(target=h.execute_reserved, args=(turn,), daemon=True)
         worker.start()
         assert h.feed.wait_until(lambda v: v.angles['bend_ii'] >= steered_rad, 120.0, 'the front turned in')
         h.server.cancel()

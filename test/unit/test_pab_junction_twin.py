@@ -267,7 +267,7 @@ def cancelled_in(h, goal, state, after_s):
     entered ``state``, then 2 robot s of safe hold: (odometry mm on entering
     ``state``, the PAB state at the cancel)."""
     assert h.server.reserve(goal) is None
-    worker = threading.Thread(target=h.server.run, args=(goal,), daemon=True)
+    worker = threading.Thread(target=h.execute_reserved, args=(goal,), daemon=True)
     worker.start()
     wait_for_state(h, state)
     entered_mm = h.feed.latest().odometry

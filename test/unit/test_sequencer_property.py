@@ -59,7 +59,7 @@ class GoalsAndCancels(RuleBasedStateMachine):
             self.running += 1
             self.max_running = max(self.max_running, self.running)
         try:
-            record.append(self.h.server.run(goal).status)
+            record.append(self.h.execute_reserved(goal).status)
         finally:
             with self.lock:
                 self.running -= 1

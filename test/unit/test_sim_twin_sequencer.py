@@ -101,7 +101,7 @@ def test_cancel_mid_clamp_leaves_the_safe_hold_and_the_pose_held():
     with SimHarness(world='straight_90') as h:
         h.server.reserve(h.goal(CLAMP_STRAIGHT))
         done = {}
-        worker = threading.Thread(target=lambda: done.update(o=h.server.run(h.goal(CLAMP_STRAIGHT))), daemon=True)
+        worker = threading.Thread(target=lambda: done.update(o=h.execute_reserved(h.goal(CLAMP_STRAIGHT))), daemon=True)
         worker.start()
         assert h.feed.wait_until(lambda v: v.angles['bend_iv'] < -0.4, 30.0, 'clamping rear')
         h.server.cancel()

@@ -87,6 +87,7 @@ class SimHarness(object):
         self.silent = set()           # boards that stop answering (the Mega skips them)
         self.failure = None           # what stopped the robot thread, if it failed
         self._due = []                # (condition, action) of :meth:`when`
+        self._due_lock = threading.Lock()
         self._ticks = threading.Condition()
         self._thread = threading.Thread(target=self._robot_loop, daemon=True)
 
@@ -139,17 +140,26 @@ class SimHarness(object):
 
     def _run_due(self):
         """Run the actions of :meth:`when` whose condition holds; True when one ran."""
-        due = [entry for entry in self._due if entry[0]()]
-        for entry in due:
-            self._due.remove(entry)
-            entry[1]()
+        with self._due_lock:
+            due = [entry for entry in self._due if entry[0]()]
+            self._due = [entry for entry in self._due if entry not in due]
+        for _, action in due:
+            action()
         return bool(due)
 
     def when(self, condition, action):
         """Call ``action()`` before the first cycle at which ``condition()``
         holds (checked between cycles, every consumer waiting): a cancel or a
-        fault at a robot instant, the same in every run."""
-        self._due.append((condition, action))
+        fault at a robot instant, the same in every run). Returns a function
+        that drops the action if it has not run yet."""
+        entry = (condition, action)
+        with self._due_lock:
+            self._due.append(entry)
+
+        def forget():
+            with self._due_lock:
+                self._due = [other for other in self._due if other is not entry]
+        return forget
 
     def wait_robot(self, condition, robot_s):
         """Wait as a consumer until ``condition()`` holds or ``robot_s`` of
@@ -225,6 +235,12 @@ class SimHarness(object):
             if reason:
                 return reason, None
             return None, self.server.run(goal)
+
+    def execute_reserved(self, goal):
+        """Run ``goal``, reserved already (``server.reserve``), to its Outcome,
+        taking part in the lockstep for the whole run."""
+        with self.clock.taking_part():
+            return self.server.run(goal)
 
 
 class _Goal(object):

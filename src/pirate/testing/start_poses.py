@@ -6,7 +6,6 @@ each is made on a running :class:`pirate.testing.harness.SimHarness` the way
 an operator or a cancelled goal would leave the robot, never by setting
 the twin's state: a pose is something the robot can be in.
 """
-import threading
 
 from pirate.sequencer import clamp_state
 
@@ -32,14 +31,11 @@ def front_lifted(h, mm):
 
 def rear_partly_clamped(h, mm):
     """A Clamp Straight cancelled half way through its first (rear) clamp."""
-    goal = h.goal(CLAMP_STRAIGHT, pipe_diameter=mm)
-    if h.server.reserve(goal) is not None:
-        raise RuntimeError('Clamp Straight refused')
-    worker = threading.Thread(target=h.server.run, args=(goal,), daemon=True)
-    worker.start()
-    h.feed.wait_until(lambda v: v.angles['bend_iv'] < PARTLY_RAD, 30.0, 'rear half clamped')
-    h.server.cancel()
-    worker.join(30.0)
+    forget = h.when(lambda: h.feed.latest().angles['bend_iv'] < PARTLY_RAD, h.server.cancel)
+    reason, outcome = h.execute(h.goal(CLAMP_STRAIGHT, pipe_diameter=mm))
+    forget()
+    if reason or outcome.status != 'preempted':
+        raise RuntimeError('Clamp Straight not cancelled half way: %s' % (reason or outcome.message))
 
 
 def both_clamped(h, mm):
