@@ -149,8 +149,8 @@ class SimHarness(object):
 
     def when(self, condition, action):
         """Call ``action()`` before the first cycle at which ``condition()``
-        holds (checked between cycles, every consumer waiting): a cancel or a
-        fault at a robot instant, the same in every run). Returns a function
+        holds, checked between cycles while every consumer waits: a cancel or
+        a fault at a robot instant, the same in every run. Returns a function
         that drops the action if it has not run yet."""
         entry = (condition, action)
         with self._due_lock:
@@ -166,12 +166,12 @@ class SimHarness(object):
         robot time passed; return ``condition()``."""
         end = self.clock() + robot_s - 1e-9
         with self._ticks:
-            while not condition() and self.clock() < end and self.failure is None:
+            while not condition() and self.clock() < end and not self.clock.closed:
                 self.clock.wait(self._ticks, 0.1)
         return condition()
 
     def run_for(self, robot_s):
-        """Let the robot run ``robot_s`` of robot time (nothing else waiting for it)."""
+        """Wait as a consumer while ``robot_s`` of robot time pass."""
         self.wait_robot(lambda: False, robot_s)
 
     def _report(self, states):

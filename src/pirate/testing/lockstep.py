@@ -35,6 +35,11 @@ class Lockstep(object):
     def __call__(self):
         return self._start_s + self._cycle * self._cycle_s
 
+    @property
+    def closed(self):
+        """True once the robot stopped (:meth:`close`)."""
+        return self._closed
+
     # --- consumers ---------------------------------------------------------
     @contextlib.contextmanager
     def taking_part(self):
