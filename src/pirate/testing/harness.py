@@ -122,17 +122,19 @@ class SimHarness(object):
             self.clock.close()
 
     def _cycle(self):
-        """One Mega cycle, while every consumer waits: the manager's 10 Hz
-        timer sends what the sequencer wrote for the last state, the model
-        steps 0.1 s, the new state is reported."""
-        self.setpoint.tick()
-        self.limit.tick()
+        """One Mega cycle, while every consumer waits: the model steps 0.1 s,
+        the manager's 10 Hz timer sends what the sequencer wrote for the last
+        state (it acts from the next cycle: on the robot the timer runs
+        apart from the states, up to a cycle after), the new state is
+        reported."""
         if self.watchdog.poll(self.clock()):
             self._apply()
         with self._lock:
             for _ in range(STEPS_PER_CYCLE):
                 self.model.step(PICO_PERIOD_S)
             states = [(b, self.model.small_state(b)) for b in tables.BOARDS]
+        self.setpoint.tick()
+        self.limit.tick()
         self.clock.advance()
         if not self.frozen:
             self._report([(b, d) for b, d in states if b not in self.silent])
