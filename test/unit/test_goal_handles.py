@@ -30,6 +30,8 @@ from pirate.testing.harness import SimHarness
 CANCELS = 1000
 SENDERS = 2
 GOAL_END_BOUND_S = 30.0     # wall; a lost cancel ends by the primitive timeout (15 s robot, x50)
+#: The robot paced on the wall clock: a goal outlives the 0-2 ms cancel instants (its 15 s timeout is 0.3 s wall).
+ROBOT_S_PER_WALL_S = 50.0
 ACTIONLIB_LOCK = threading.RLock()
 #: An abort for lost robot state (a starved robot thread on a loaded machine)
 #: ends the goal safely before its cancel is read; it is not a lost cancel.
@@ -127,7 +129,7 @@ def manager(monkeypatch):
     stop = threading.Event()
     monkeypatch.setattr(manager_node.rospy, 'is_shutdown', stop.is_set)
     monkeypatch.setattr(manager_node.rospy, 'logwarn', lambda *args: None)
-    with SimHarness() as sim:
+    with SimHarness(pace=ROBOT_S_PER_WALL_S) as sim:
         sim.model.step = lambda dt: None        # the robot stands still: no goal ends by itself
         mgr = manager_node.PirateManager.__new__(manager_node.PirateManager)
         mgr.server, mgr.feed = sim.server, sim.feed

@@ -81,16 +81,15 @@ def test_a_cancel_at_a_robot_instant_lands_on_the_same_cycle_every_run():
 
 
 def test_the_robot_stands_still_while_a_consumer_taking_part_works():
-    clock = Lockstep(1.0, 0.1)
     steps = []
     cond = threading.Condition()
 
-    def robot():
-        while clock.await_consumers():
-            steps.append(clock())
-            clock.advance()
-            clock.wake()
-    thread = threading.Thread(target=robot, daemon=True)
+    def cycle():
+        steps.append(clock())
+        clock.advance()
+        clock.wake()
+    clock = Lockstep(1.0, 0.1, cycle)
+    thread = threading.Thread(target=clock.robot_loop, daemon=True)
     thread.start()
     try:
         with clock.taking_part():

@@ -19,6 +19,7 @@ robot instant (a cancel, a fault) goes in :meth:`SimHarness.when`: it runs
 between two cycles, while every consumer waits.
 """
 import threading
+import time
 
 from pirate.robot import commands, tables
 from pirate.state.feed import RobotFeed, RobotView
@@ -61,13 +62,17 @@ class SimHarness(object):
     The robot is the physics twin: ``model_args`` go to
     :func:`pirate.sim.robot_end.make_robot` (``world=``, default the straight
     pipe of ``pipe_diameter``); a unit test that needs the fast fake passes
-    ``robot=FakeRobot(...)`` (:mod:`pirate.sim.fake_robot`) instead."""
+    ``robot=FakeRobot(...)`` (:mod:`pirate.sim.fake_robot`) instead.
+    ``pace``: at most this many robot s per wall s, for a test of races on
+    the wall clock that needs the robot slower than the CPU runs it (None:
+    as fast as the CPU allows)."""
 
-    def __init__(self, feedback_timeout=None, robot=None, **model_args):
+    def __init__(self, feedback_timeout=None, robot=None, pace=None, **model_args):
         self.model = robot if robot is not None else make_robot(**model_args)
+        self.pace = pace
         self._lock = threading.RLock()
         self.watchdog = MegaWatchdog()
-        self.clock = Lockstep(START_S, PICO_PERIOD_S * STEPS_PER_CYCLE)
+        self.clock = Lockstep(START_S, PICO_PERIOD_S * STEPS_PER_CYCLE, self._turn)
         self.wires = {name: _Wire(self.clock, lambda name=name: self._apply(name))
                       for name in ('setpoint', 'control', 'limit')}
         self.control = commands.Control(self.wires['control'], list)
@@ -89,7 +94,7 @@ class SimHarness(object):
         self._due = []                # (condition, action) of :meth:`when`
         self._due_lock = threading.Lock()
         self._ticks = threading.Condition()
-        self._thread = threading.Thread(target=self._robot_loop, daemon=True)
+        self._thread = threading.Thread(target=self.clock.robot_loop, daemon=True)
 
     @property
     def robot_time(self):
@@ -109,13 +114,14 @@ class SimHarness(object):
             self.model.command(self.setpoint.get_all(), self.watchdog.boards_see(self.control.get_all()),
                                self.limit.get_all())
 
-    def _robot_loop(self):
+    def _turn(self):
+        """The robot's turn, every consumer waiting: the actions of :meth:`when`
+        that fell due, else one cycle."""
         try:
-            while self.clock.await_consumers():
-                if self._run_due():
-                    self.clock.nudge()
-                else:
-                    self._cycle()
+            if self._run_due():
+                self.clock.nudge()
+            else:
+                self._cycle()
         except Exception as failure:  # pylint: disable=broad-except; the goal must end, not hang
             self.failure = failure
             self.feed.lose('the simulated robot failed: %r' % failure)
@@ -133,6 +139,8 @@ class SimHarness(object):
             for _ in range(STEPS_PER_CYCLE):
                 self.model.step(PICO_PERIOD_S)
             states = [(b, self.model.small_state(b)) for b in tables.BOARDS]
+        if self.pace:
+            time.sleep(PICO_PERIOD_S * STEPS_PER_CYCLE / self.pace)
         self.setpoint.tick()
         self.limit.tick()
         self.clock.advance()

@@ -13,8 +13,13 @@ too, so the robot stands still while it works on a state (a goal's whole
 run). With no consumer the robot stands still: robot time passes only while
 someone waits for it.
 
-Pure Python, no ROS; the robot side is :meth:`Lockstep.await_consumers`,
-:meth:`Lockstep.advance`, :meth:`Lockstep.wake` and :meth:`Lockstep.nudge`.
+The robot's turn (``turn``: one cycle, or an action between two) runs in
+the robot's own thread (:meth:`Lockstep.robot_loop`), never in a
+consumer's: a consumer waits holding its condition's lock, which a turn
+taken in its thread would keep from every other thread (a cancel). A turn
+ends with :meth:`Lockstep.advance` or :meth:`Lockstep.nudge`.
+
+Pure Python, no ROS.
 """
 import contextlib
 import threading
@@ -23,8 +28,10 @@ import threading
 class Lockstep(object):
     """Robot seconds (call it), advanced ``cycle_s`` a cycle from ``start_s``."""
 
-    def __init__(self, start_s, cycle_s):
+    def __init__(self, start_s, cycle_s, turn):
         self._start_s, self._cycle_s = start_s, cycle_s
+        self._turn = turn
+        self._turning = False       # a thread takes the robot's turn now
         self._lock = threading.Condition()
         self._cycle = 0
         self._epoch = 0             # a new cycle, or something else every consumer must see
@@ -55,7 +62,7 @@ class Lockstep(object):
                 self._members[me] -= 1
                 if not self._members[me]:
                     del self._members[me]
-                self._lock.notify_all()
+                self._poke()
 
     def wait(self, cond, poll_s=None):
         """Wait on ``cond`` (held by the caller) until it is notified or the
@@ -66,20 +73,44 @@ class Lockstep(object):
         me = threading.get_ident()
         with self._lock:
             self._waiting[me] = (cond, self._epoch)
-            self._lock.notify_all()
+            self._poke()
         try:
             cond.wait()
         finally:
             with self._lock:
                 del self._waiting[me]
+                self._poke()
+
+    def _take_turn(self):
+        """(lock held) True, and the turn marked taken, when the robot's turn is due."""
+        if self._turning or self._closed or not self._ready():
+            return False
+        self._turning = True
+        return True
+
+    def _run_turn(self):
+        try:
+            self._turn()
+        finally:
+            with self._lock:
+                self._turning = False
+                self._poke()
+
+    def _poke(self):
+        """(lock held) Wake the robot's thread when its turn is due."""
+        if not self._turning and self._ready():
+            self._lock.notify_all()
 
     # --- the robot ---------------------------------------------------------
-    def await_consumers(self):
-        """Block until every consumer waits on the newest epoch; False once closed."""
-        with self._lock:
-            while not self._closed and not self._ready():
-                self._lock.wait()
-            return not self._closed
+    def robot_loop(self):
+        """The robot's thread: take every turn as it falls due, until closed."""
+        while True:
+            with self._lock:
+                while not self._closed and not self._take_turn():
+                    self._lock.wait()
+                if self._closed:
+                    return
+            self._run_turn()
 
     def _ready(self):
         if not self._waiting:
