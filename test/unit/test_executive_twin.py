@@ -342,7 +342,7 @@ def test_a_mission_there_and_back_through_a_bend_and_a_t_joint_ends_at_the_launc
     pipe_map = network.build(dict(layout, points=layout['points'] + [{'name': 'past_tee', 'at_mm': 3200}]))
     plan = planner.plan(pipe_map, ['launch_pit', 'past_tee', 'launch_pit'], SETTINGS, MAX_DRIVE_MM, None, True)
     planner.check_runnable(plan)
-    with SimHarness(speedup=TEE_SPEEDUP, world='inspection_network_90', orientation=UPRIGHT, seed=11) as h:
+    with SimHarness(world='inspection_network_90', orientation=UPRIGHT, seed=11) as h:
         robot, run = executive(plan, h, pipe_map.points['launch_pit'])
         outcome = finished(run, *run_in_thread(run))
         truth_m = robot_along_m(pipe_map, h.ground_truth())

@@ -26,7 +26,7 @@ import yaml
 from pirate.sequencer.pabs import codes
 from pirate.testing.harness import SimHarness
 from pirate.world import network
-from test_pab_junction_twin import APEX_WHEELS, JOINT_BODIES, SIDES, TURN_SPEEDUP, clamped_sideways
+from test_pab_junction_twin import APEX_WHEELS, JOINT_BODIES, SIDES, clamped_sideways
 from test_sequencer_sim import assert_ended, run_bounded
 from test_sim_twin_sequencer import robot_wait
 
@@ -72,7 +72,7 @@ def test_a_mitre_bend_taken_rear_first_ends_in_the_old_pipe(tmp_path, side, mm):
     option, roll, _ = SIDES[side]
     path, world = back_world(tmp_path, {'type': 'mitre', 'turn': side}, mm, OTHER[side])
     old_pipe = world.pieces[-4]
-    with SimHarness(speedup=TURN_SPEEDUP, world=path, orientation=roll) as h:
+    with SimHarness(world=path, orientation=roll) as h:
         clamped_sideways(h, option, mm)
         reason, outcome = run_bounded(h, h.goal(codes.MITRE_BEND, mm, option=option, distance=-800.0), 200.0)
         assert_ended(reason, outcome)
@@ -92,7 +92,7 @@ def test_a_mitre_bend_taken_rear_first_ends_in_the_old_pipe(tmp_path, side, mm):
 def test_a_t_joint_open_upward_gone_straight_through_rear_first_ends_before_it(tmp_path, mm):
     path, world = back_world(tmp_path, {'type': 'tee', 'enter': 'run', 'side': 'up'}, mm)
     before = world.pieces[0]
-    with SimHarness(speedup=TURN_SPEEDUP, world=path) as h:
+    with SimHarness(world=path) as h:
         reason, outcome = run_bounded(h, h.goal(codes.CLAMP_STRAIGHT, mm))
         assert_ended(reason, outcome)
         reason, outcome = run_bounded(h, h.goal(codes.T_JOINT, mm, option=codes.STRAIGHT, distance=-800.0))
