@@ -432,7 +432,7 @@ def test_a_board_going_silent_on_a_lossy_bus_is_still_noticed():
 
 def test_a_clamp_straight_succeeds_with_ten_percent_loss_and_jitter():
     """In the twin every goal aborted "board N silent" under 10 % loss."""
-    with SimHarness(speedup=SPEEDUP) as h:
+    with SimHarness() as h:
         h.assembler.update = _LossyBus(h.assembler.update, random.Random(3))
         lost = []
         lose = h.feed.lose

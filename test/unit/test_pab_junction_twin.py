@@ -392,7 +392,7 @@ def test_a_frozen_bend_i_during_a_turn_aborts_naming_it_within_1_s_and_20_mm():
     on blind 24 s and 400 mm)."""
     option, roll, _ = SIDES['left']
     world = network.load(network.world_path('bend_left_90'))
-    with SimHarness(speedup=TURN_SPEEDUP, world=world.name, orientation=roll) as h:
+    with SimHarness(world=world.name, orientation=roll) as h:
         clamped_sideways(h, option)
         real, frozen = h.model.small_state, {}
 
@@ -406,7 +406,7 @@ def test_a_frozen_bend_i_during_a_turn_aborts_naming_it_within_1_s_and_20_mm():
         worker = threading.Thread(target=lambda: result.update(r=h.execute(h.goal(
             codes.MITRE_BEND, option=option, distance=800.0))), daemon=True)
         worker.start()
-        assert _wait(h, lambda: h.server.primitive == 'clamp front at the corner', 90.0), h.server.primitive
+        assert h.wait_robot(lambda: h.server.primitive == 'clamp front at the corner', 90.0), h.server.primitive
         robot_wait(h, 0.3)                                   # Bend I driven toward the wall
         data = real(22)
         frozen.update(angle=data[tables.SS_ANGLE], spring=data[tables.SS_BEND_LOAD])
@@ -418,10 +418,3 @@ def test_a_frozen_bend_i_during_a_turn_aborts_naming_it_within_1_s_and_20_mm():
         robot_wait(h, 1.0)                                   # the wheels stopped by the hold
         assert ended_at - frozen_at <= 1.0, ended_at - frozen_at
         assert h.feed.latest().odometry - odometry_at <= 20.0
-
-
-def _wait(h, condition, wall_s):
-    end = time.monotonic() + wall_s
-    while not condition() and time.monotonic() < end:
-        time.sleep(0.002)
-    return condition()
