@@ -161,6 +161,8 @@ def test_the_cameras_are_recorded_to_their_own_bag_only_when_asked():
     for part in ('-O /tmp/pirate_cameras_check.bag', '/pirate/front_camera/image_raw', '/pirate/rear_camera/image_raw',
                  '/pirate/inspection/findings'):
         assert part in command.stdout, command.stdout
+
+
 # --- the operator launch ------------------------------------------------------
 
 @pytest.mark.parametrize('args,present,absent', [
