@@ -47,13 +47,12 @@ ALLOWED = {
                 'manager', 'camera'},
 }
 
-#: The modules that import ROS. Each is named *_node.py or *_ros.py, except
-#: :data:`ROS_BY_OTHER_NAME`.
+#: The modules that import ROS. Each is named *_node.py or *_ros.py.
 ROS_MODULES = (
     'pirate.camera.images_ros',
     'pirate.camera.v4l2_node',
-    'pirate.link.host',
-    'pirate.link.service_bridge',
+    'pirate.link.host_ros',
+    'pirate.link.service_bridge_ros',
     'pirate.inspection.inspection_node',
     'pirate.manager.action_server_ros',
     'pirate.manager.manager_node',
@@ -72,9 +71,6 @@ ROS_MODULES = (
     'pirate.viz.pose_node',
     'pirate.viz.world_node',
 )
-#: The rosserial host (port threads, sessions and ROS) and its service
-#: bridge: ROS edges by what their package's docstring says, not by name.
-ROS_BY_OTHER_NAME = ('pirate.link.host', 'pirate.link.service_bridge')
 
 #: Python packages of ROS; any ``*_msgs`` / ``*_srvs`` package is one too.
 ROS_PACKAGES = {
@@ -188,7 +184,7 @@ def test_each_ros_module_exists_imports_ros_and_says_so_in_its_name():
         assert module in LIBRARY_MODULES, '%s is listed in ROS_MODULES and does not exist' % module
         assert any(is_ros(name) for _, name in imports(module, LIBRARY_MODULES[module])), (
             '%s is listed in ROS_MODULES and imports no ROS' % module)
-        assert module.endswith(('_node', '_ros')) or module in ROS_BY_OTHER_NAME, (
+        assert module.endswith(('_node', '_ros')), (
             '%s imports ROS: name it *_node.py or *_ros.py' % module)
 
 

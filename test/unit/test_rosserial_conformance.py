@@ -131,7 +131,7 @@ def test_a_service_call_each_way():
 
 
 def test_log_forwarded_at_level_without_prefix(monkeypatch):
-    from pirate.link import host
+    from pirate.link import host_ros as host
     logged = []
     for level in ('debug', 'info', 'warn', 'error', 'fatal'):
         monkeypatch.setitem(host._LOG, level,

@@ -7,7 +7,7 @@ import pytest
 from diagnostic_msgs.msg import DiagnosticStatus
 from std_msgs.msg import Int16, String
 
-from pirate.link import host as host_module
+from pirate.link import host_ros as host_module
 from pirate.link import messages, protocol, session
 from pirate.link.protocol import Frame, FrameParser
 

@@ -14,7 +14,7 @@ Two threads around the pure parts:
 
 What a ros_lib device may use is served (firmware/README.md, "Host"):
 publishers and subscribers (a topic announced again with another type is
-recreated), services both ways (:mod:`.service_bridge`), parameters from
+recreated), services both ways (:mod:`.service_bridge_ros`), parameters from
 the parameter server, logs at their level, time. A message larger than the
 buffer the device announced for that topic is refused and logged at ERROR,
 as rosserial_python does. Every lost sync is a WARN with its running count
@@ -39,7 +39,7 @@ from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 
 from pirate.link import protocol, session as sessions
 from pirate.link.port import SerialLink
-from pirate.link.service_bridge import ServiceBridge
+from pirate.link.service_bridge_ros import ServiceBridge
 from pirate.link.outbox import Outbox
 from pirate.link.protocol import PROTOCOL_VERSION, FrameParser, encode
 
