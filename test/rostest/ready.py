@@ -19,11 +19,15 @@ def wait_robot_connected(timeout_s=60.0):
 
 
 def wait_until(condition, what, deadline_s=60.0):
-    """Poll ``condition`` (every 20 ms) until true; AssertionError naming ``what`` after the deadline."""
+    """Poll ``condition`` (every 20 ms) until truthy and return that value;
+    AssertionError naming ``what`` after the deadline."""
     end = time.monotonic() + deadline_s
-    while not condition():
+    while True:
+        value = condition()
+        if value:
+            return value
         if time.monotonic() > end:
-            raise AssertionError('timed out waiting for %s' % what)
+            raise AssertionError('timed out after %.0f s waiting for %s' % (deadline_s, what))
         time.sleep(0.02)
 
 

@@ -4,7 +4,6 @@
 Runs against launch/robot.launch (sim_robot + pirate_state) in simulated
 time. Every wait is on a condition with a wall-clock deadline, never a sleep.
 """
-import time
 import unittest
 
 import numpy
@@ -16,21 +15,9 @@ from sensor_msgs.msg import CameraInfo, Image, JointState
 from pirate import names
 from pirate.msg import ControlArray, SetpointArray
 from pirate.robot import safety, tables, units
+from ready import wait_until
 
-DEADLINE_S = 60.0        # wall seconds for any one condition
-POLL_S = 0.02            # how often a condition is re-checked (wall)
 PAN_RAD = 0.6
-
-
-def wait_until(condition, what, deadline=DEADLINE_S):
-    """Return the first truthy value of ``condition()``; fail after ``deadline``."""
-    end = time.monotonic() + deadline
-    while time.monotonic() < end and not rospy.is_shutdown():
-        value = condition()
-        if value:
-            return value
-        time.sleep(POLL_S)
-    raise AssertionError('timed out after %.0f s waiting for %s' % (deadline, what))
 
 
 def arrays():

@@ -53,54 +53,61 @@ MISSION_SERVICE_WAIT_S = 2.0
 MISSION_SILENCE_S = 3.0
 
 
-class MissionCommandClient(object):
-    """The mapper's mission client: commands go out in order from one
-    worker thread; each answer goes back to ``reply(command, ok, message)``."""
+class _ServiceCalls(object):
+    """Calls to one service, in order, from one worker thread, so a panel
+    callback never blocks on a node that is slow or gone; each call ends in
+    ``answered(answer)`` or ``failed(error)``."""
 
-    def __init__(self):
-        self.reply = None
+    def __init__(self, service, service_type, thread_name):
         self._todo = queue.Queue()
-        self._proxy = rospy.ServiceProxy(names.MISSION_COMMAND_SERVICE, MissionCommand)
-        threading.Thread(target=self._work, name='mission_commands', daemon=True).start()
+        self._proxy = rospy.ServiceProxy(service, service_type)
+        threading.Thread(target=self._work, name=thread_name, daemon=True).start()
 
-    def command(self, text):
-        self._todo.put(text)
+    def call(self, request, answered, failed):
+        """Queue a call with ``request`` (the service's request fields)."""
+        self._todo.put((request, answered, failed))
 
     def _work(self):
         while not rospy.is_shutdown():
-            text = self._todo.get()
+            request, answered, failed = self._todo.get()
             try:
                 self._proxy.wait_for_service(MISSION_SERVICE_WAIT_S)
-                answer = self._proxy(text)
-                ok, message = answer.ok, answer.message
+                answer = self._proxy(**request)
             except (rospy.ROSException, rospy.ServiceException) as err:
-                ok, message = False, 'no mission executive answers (%s)' % err
-            if self.reply is not None:
-                self.reply(text, ok, message)
+                failed(err)
+                continue
+            answered(answer)
+
+
+class MissionCommandClient(object):
+    """The mapper's mission client: commands go out in order; each answer
+    goes back to ``reply(command, ok, message)``."""
+
+    def __init__(self):
+        self.reply = None
+        self._calls = _ServiceCalls(names.MISSION_COMMAND_SERVICE, MissionCommand, 'mission_commands')
+
+    def command(self, text):
+        self._calls.call({'command': text}, lambda answer: self._answer(text, answer.ok, answer.message),
+                         lambda err: self._answer(text, False, 'no mission executive answers (%s)' % err))
+
+    def _answer(self, text, ok, message):
+        if self.reply is not None:
+            self.reply(text, ok, message)
 
 
 class FindingClient(object):
     """The mapper's mark button: each press marks a finding of kind
-    ``other`` through the inspection recorder's service, from one worker
-    thread; its answer goes to ``tell(text)``."""
+    ``other`` through the inspection recorder's service; its answer goes
+    to ``tell(text)``."""
 
     def __init__(self, tell):
-        self._tell, self._todo = tell, queue.Queue()
-        self._proxy = rospy.ServiceProxy(names.INSPECTION_MARK_SERVICE, InspectionMark)
-        threading.Thread(target=self._work, name='finding_marks', daemon=True).start()
+        self._tell = tell
+        self._calls = _ServiceCalls(names.INSPECTION_MARK_SERVICE, InspectionMark, 'finding_marks')
 
     def mark(self, note):
-        self._todo.put(note)
-
-    def _work(self):
-        while not rospy.is_shutdown():
-            note = self._todo.get()
-            try:
-                self._proxy.wait_for_service(MISSION_SERVICE_WAIT_S)
-                answer = self._proxy(kind='other', note=note)
-                self._tell(answer.message)
-            except (rospy.ROSException, rospy.ServiceException) as err:
-                self._tell('finding not marked: no inspection recorder answers (%s)' % err)
+        self._calls.call({'kind': 'other', 'note': note}, lambda answer: self._tell(answer.message),
+                         lambda err: self._tell('finding not marked: no inspection recorder answers (%s)' % err))
 
 
 class _LedResync(rospy.SubscribeListener):
