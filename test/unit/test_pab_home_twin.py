@@ -124,7 +124,11 @@ def test_home_after_a_turn_cancelled_while_steering_in_leaves_the_robot_loose():
         view, guards = h.feed.latest(), h.server.book.for_diameter(90)
         assert pressing_n <= 1.25 * weight_n, (pressing_n, weight_n, outcome.message, view.angles)
         along = view.angles['bend_i'] <= guards.row('home_front_down')['bend_i_max_rad']
-        assert along == (view.angles['front_tilt'] <= guards.move('move_front_down').guard), view.angles
+        lowered = view.angles['front_tilt'] <= guards.move('move_front_down').guard
+        # Lowered only along the pipe; left lifted only for what Home senses:
+        # Bend I past the bound, or the turn stopped steering into an opening here.
+        assert along or not lowered, (outcome.message, view.angles)
+        assert lowered or not along or 'stopped steering it into an opening' in outcome.message, outcome.message
         assert along or 'front module left lifted' in outcome.message, outcome.message
         assert clamp_state.sensed(guards, view) == (clamp_state.FREE, clamp_state.FREE), (view.angles, view.efforts)
 

@@ -214,7 +214,7 @@ def test_in_pab_mode_the_m_row_reads_its_mission_jobs(panel):
 def test_long_status_lines_are_wrapped_to_the_window_not_clipped(panel):
     panel.mission_text = ('inspection_network_90 launch_pit -> target: step 5/9 MITRE_BEND RIGHT at 1885 mm, level '
                           'confirm, about 212 s left, WAITING for confirmation of step 5 (MITRE_BEND RIGHT)')
-    panel.draw(pygame.Surface((virtual.WIDTH, virtual.HEIGHT)))
+    panel.draw(pygame.Surface((virtual.WIDTH, virtual.HEIGHT), 0, virtual.DEPTH_BITS))
     lines = panel.wrapped_status()
     assert all(panel._font.size(line)[0] <= virtual.WIDTH - 28 for line in lines)   # pylint: disable=protected-access
     assert 'WAITING for confirmation of step 5 (MITRE_BEND RIGHT)' in ' '.join(lines)
@@ -222,7 +222,7 @@ def test_long_status_lines_are_wrapped_to_the_window_not_clipped(panel):
 
 def test_manual_mode_labels_what_each_slider_and_knob_moves(panel):
     panel.manual_labels = {7: 'wheels', 17: 'limit Bend IV'}
-    surface = pygame.Surface((virtual.WIDTH, virtual.HEIGHT))
+    surface = pygame.Surface((virtual.WIDTH, virtual.HEIGHT), 0, virtual.DEPTH_BITS)
     panel.draw(surface)
     rect = panel.control(7).rect
     under = pygame.Rect(rect.centerx - 25, rect.bottom + 18, 50, 12)
