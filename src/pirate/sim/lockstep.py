@@ -21,6 +21,11 @@ import time
 #: on: far above a cycle's work at a load of 4 processes per core (tens of
 #: ms), so only a frozen stack ever reaches it.
 WAIT_BOUND_S = 1.0
+#: How much older than the cycle an acknowledged state's stamp may be and
+#: still be of that cycle, simulated s: half a Mega cycle (0.1 s), so the
+#: consumer's clock may lag the cycle's /clock by two PICO steps while an
+#: acknowledgement of the cycle before, arriving late, never counts.
+STAMP_SLACK_S = 0.05
 
 
 class Lockstep(object):
@@ -35,17 +40,23 @@ class Lockstep(object):
         self._wall = wall
         self._cond = threading.Condition()
         self._acknowledged = True
+        self._cycle_s = float('-inf')
 
-    def published(self):
-        """The simulator published a cycle: acknowledgements before now were of earlier ones."""
+    def published(self, cycle_s):
+        """The simulator published the cycle at simulated time ``cycle_s``."""
         with self._cond:
             self._acknowledged = False
+            self._cycle_s = cycle_s
 
-    def acknowledged(self):
-        """A consumer took in the state of the newest cycle."""
+    def acknowledged(self, stamp_s):
+        """A consumer took in a state stamped ``stamp_s`` (simulated s): the
+        newest cycle's, unless the stamp is of an earlier one (a late
+        acknowledgement must not let the simulator run a cycle further ahead)."""
         with self._cond:
-            self._acknowledged = self.heard = True
-            self._cond.notify_all()
+            self.heard = True
+            if stamp_s >= self._cycle_s - STAMP_SLACK_S:
+                self._acknowledged = True
+                self._cond.notify_all()
 
     def wait(self, consumers):
         """Block until the newest cycle is acknowledged, ``consumers()`` is

@@ -69,7 +69,8 @@ class SimRobotNode(object):
         self.watchdog = MegaWatchdog()
         self._sim_s = CLOCK_START_S     # the simulated robot's time: the Mega watchdog's clock
         self.lockstep = Lockstep(float(rospy.get_param('~lockstep_bound', WAIT_BOUND_S)))
-        self._ack_sub = (rospy.Subscriber(names.LOCKSTEP_TOPIC, Time, lambda _msg: self.lockstep.acknowledged())
+        self._ack_sub = (rospy.Subscriber(names.LOCKSTEP_TOPIC, Time,
+                                          lambda msg: self.lockstep.acknowledged(msg.data.to_sec()))
                          if self.sim_time else None)
         self._state_pub = rospy.Publisher(names.SMALL_STATE_TOPIC, SmallState, queue_size=len(tables.BOARDS) * 4)
         self._clock_pub = rospy.Publisher('/clock', Clock, queue_size=1) if self.sim_time else None
@@ -131,7 +132,7 @@ class SimRobotNode(object):
 
     def _publish_states(self):
         if self._ack_sub is not None:
-            self.lockstep.published()   # before the first state: its acknowledgement may be quick
+            self.lockstep.published(self._sim_s)   # before the first state: its acknowledgement may be quick
         for board in tables.BOARDS:
             self._state_pub.publish(SmallState(board=board, data=self.model.small_state(board)))
         if self._truth_pub:
