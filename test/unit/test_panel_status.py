@@ -89,3 +89,29 @@ def test_robot_line_shows_joints_odometry_along_and_leds():
     assert line == ('Robot: joints (rad) front +0.38 I -0.80 rot +0.00 | odometry 412 mm, along the pipe 1885 mm'
                     ' | LEDs front on (120), rear off')
     assert 'along the pipe: no mission' in status.robot_line({}, 0.0)
+
+
+# (typical s of the sent goal, robot time it was sent, goal id of the feedback, now: the PAB line's end)
+TIME_LEFT = {
+    'half way': (25.0, 100.0, 'g3', 112.0, ' | about 13 s left (typically 25 s)'),
+    'over its typical time': (25.0, 100.0, 'g3', 131.0, ' | 31 s so far, longer than the typical 25 s'),
+    'a feedback of another goal': (25.0, 100.0, 'g4', 112.0, ''),
+    'a PAB of no typical duration': (0.0, 100.0, 'g3', 112.0, ''),
+}
+
+
+@pytest.mark.parametrize('name', sorted(TIME_LEFT))
+def test_a_running_pab_says_its_time_left(name):
+    typical, sent, running, now, end = TIME_LEFT[name]
+    panel_status = status.PanelStatus()
+    panel_status.goal('g3', typical, sent)
+    panel_status.feedback(running, 'PAB running: Drive / driving')
+    assert panel_status.pab_line(now) == 'PAB running: Drive / driving' + end
+
+
+def test_an_ended_pab_says_no_time_left():
+    panel_status = status.PanelStatus()
+    panel_status.goal('g3', 25.0, 100.0)
+    panel_status.feedback('g3', 'PAB running: Drive / driving')
+    panel_status.result('g3', 'PAB succeeded: driven')
+    assert 'left' not in panel_status.pab_line(112.0)

@@ -11,7 +11,10 @@ once a second), and the mission's lines, and gives the lines to show:
   the last feedback; while the server is idle the line follows it;
 - a manager that does not answer says so; one that answers again after a
   silence is a new manager: the outcome and the mission's ending from
-  before it are dropped (nothing stale after a restart).
+  before it are dropped (nothing stale after a restart);
+- a running goal's line says about how long it has left, from when it was
+  sent and how long a PAB of its kind typically takes
+  (pirate.supervisory.durations), or that it runs longer than that.
 
 :func:`wrap` breaks a line into lines that fit a width, so nothing is
 clipped at the window's edge.
@@ -33,12 +36,18 @@ class PanelStatus(object):
         self.mission = ''       # the mission's line
         self._ended = []        # ids of goals that ended, newest last
         self._answered = None   # None: never asked; True / False: the last ask answered
+        self._running_id = None  # the goal whose feedback is the running line
+        self._sent = {}         # goal id -> (typical duration s, robot time s it was sent)
+
+    def goal(self, goal_id, typical_s, sent_s):
+        """Goal ``goal_id`` was sent at robot time ``sent_s``; a PAB of its kind takes about ``typical_s``."""
+        self._sent = {goal_id: (typical_s, sent_s)}
 
     def feedback(self, goal_id, text):
         """A feedback line of goal ``goal_id``; False when dropped (the goal has ended)."""
         if goal_id in self._ended:
             return False
-        self.running = text
+        self.running, self._running_id = text, goal_id
         return True
 
     def result(self, goal_id, text):
@@ -65,12 +74,28 @@ class PanelStatus(object):
     def mission_line(self, text):
         self.mission = text
 
-    def pab_line(self):
-        """The PAB line: the running goal, else the last outcome; with the server's state."""
+    def pab_line(self, now_s=None):
+        """The PAB line: the running goal (with its time left at robot time
+        ``now_s``), else the last outcome with the server's state."""
         news = self.running or self.outcome or NO_NEWS
-        if self.running or not self.server:
+        if self.running:
+            return news + self._time_left(now_s)
+        if not self.server:
             return news
         return '%s | Server: %s' % (news, self.server)
+
+    def _time_left(self, now_s):
+        sent = self._sent.get(self._running_id)
+        if sent is None or now_s is None or not sent[0]:
+            return ''
+        return ' | ' + time_left(sent[0], now_s - sent[1])
+
+
+def time_left(typical_s, elapsed_s):
+    """How long a PAB that typically takes ``typical_s`` has left after ``elapsed_s`` (s), in words."""
+    if elapsed_s <= typical_s:
+        return 'about %.0f s left (typically %.0f s)' % (typical_s - elapsed_s, typical_s)
+    return '%.0f s so far, longer than the typical %.0f s' % (elapsed_s, typical_s)
 
 
 def control_labels(panel_map):

@@ -8,7 +8,9 @@ Pirate Server's action feedback and result (``/pirate/feedback``,
 the panel's messages to the operator (refusals, results) from
 ``names.OPERATOR_TOPIC``, and the running mission (its map and route from
 its goal; step k of n, autonomy level, what it waits for, how it ended)
-from the mission executive's action goal, feedback and result, kept true
+from the mission executive's action goal, feedback and result; a running
+PAB's time left from its goal (``/pirate/goal``) and how long a PAB of its
+kind typically takes (config/supervisory.yaml ``typical_s``); kept true
 by pirate.panel.status (the server's own state from
 ``names.SERVER_STATUS_SERVICE`` after every outcome and once a second; a
 late feedback never overwrites a result; nothing stale after a manager
@@ -31,12 +33,16 @@ import rospy
 
 from pirate import names, paths
 from pirate.msg import (MidiInput, MidiOutput, MissionActionFeedback, MissionActionGoal, MissionActionResult,
-                        PirateActionFeedback, PirateActionResult, RobotState, SetpointArray)
+                        PirateActionFeedback, PirateActionGoal, PirateActionResult, RobotState, SetpointArray)
 from pirate.srv import ServerStatus
 from std_msgs.msg import Float64, String
 
 from pirate.panel import config, mission_buttons, status, virtual
 from pirate.robot import tables
+from pirate.sequencer import goals
+from pirate.supervisory import durations
+from pirate.sequencer.guards import load_files
+from pirate.supervisory.plan_cli import load_settings
 
 #: The panel map whose PAB buttons the panel lists (the launch's panel_config default).
 PANEL_CONFIG = os.path.join(paths.CONFIG_DIR, 'nanokontrol2.yaml')
@@ -56,6 +62,8 @@ class VirtualPanelNode(object):
         self.panel.mission_labels = mission_buttons.labels(panel_map.mission_buttons)
         self.panel.manual_labels = status.control_labels(panel_map)
         self.status = status.PanelStatus()
+        self._typical_s = load_settings()[0]['typical_s']
+        self._drive_speed = load_files()[1]['drive']['default_speed']   # a Drive goal's speed 0 (mm/s)
         self._mission = ''          # the running mission's map and route (from its goal)
         self._along_mm = None       # the mission's estimate along the pipe
         self._leds = {}             # 'front' / 'rear' LED setpoint counts
@@ -63,6 +71,7 @@ class VirtualPanelNode(object):
         self._lock = threading.Lock()
         self._pub = rospy.Publisher(names.MIDI_INPUT_TOPIC, MidiInput, queue_size=200)
         rospy.Subscriber(names.MIDI_OUTPUT_TOPIC, MidiOutput, self._on_led, queue_size=200)
+        rospy.Subscriber(names.PIRATE_ACTION + '/goal', PirateActionGoal, self._on_goal, queue_size=10)
         rospy.Subscriber(names.PIRATE_ACTION + '/feedback', PirateActionFeedback,
                          self._on_feedback, queue_size=10)
         rospy.Subscriber(names.PIRATE_ACTION + '/result', PirateActionResult,
@@ -83,6 +92,13 @@ class VirtualPanelNode(object):
     def _on_led(self, msg):
         with self._lock:
             self.panel.set_led(msg.button, msg.value)
+
+    def _on_goal(self, msg):
+        pab = goals.CODE_NAMES.get(msg.goal.name, '')
+        typical = durations.typical_s(pab, msg.goal.distance, msg.goal.speed or self._drive_speed,
+                                      self._typical_s)
+        with self._lock:
+            self.status.goal(msg.goal_id.id, typical, rospy.get_time())
 
     def _on_feedback(self, msg):
         with self._lock:
@@ -128,7 +144,7 @@ class VirtualPanelNode(object):
             self._along_mm = msg.data
 
     def _show(self):
-        self.panel.pab_text = self.status.pab_line()
+        self.panel.pab_text = self.status.pab_line(rospy.get_time())
         self.panel.mission_text = self.status.mission
 
     def _ask_server(self):

@@ -41,6 +41,7 @@ import math
 import threading
 
 from pirate.sequencer.junctions import is_turn
+from pirate.supervisory import durations
 from pirate.supervisory.localiser import MapMismatch
 
 FULL, CONFIRM, MANUAL = 'full', 'confirm', 'manual'
@@ -376,13 +377,8 @@ class Executive(object):
     # --- telling the operator ---------------------------------------------
     def time_left_s(self):
         """Rough time left: each remaining PAB's typical duration, drives by speed."""
-        typical = self.settings['typical_s']
-        total = 0.0
-        for step in self.plan.steps[self.step_index:]:
-            total += typical.get(step.pab, 0.0)
-            if step.pab == 'DRIVE' and step.speed_mm_s:
-                total += abs(step.distance_mm) / step.speed_mm_s
-        return total
+        return sum(durations.typical_s(step.pab, step.distance_mm, step.speed_mm_s, self.settings['typical_s'])
+                   for step in self.plan.steps[self.step_index:])
 
     def _publish(self, step):
         self._progress(Progress(self.step_index + 1, len(self.plan.steps), step.pab, step.option or '',
