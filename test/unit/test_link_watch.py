@@ -1,23 +1,26 @@
 """The manager's link watch: the first Small State after a silence brings
 the laptop's control modes and limits back to the device, before any
-setpoint, whichever host runs the link. No ROS."""
+setpoint, whichever host runs the link; after a silence the setpoints at
+the safe hold first. No ROS."""
 import threading
 
 import pytest
 
-from pirate.robot import commands, link_watch
+from pirate.robot import commands, link_watch, tables
 from pirate.robot.link_watch import LinkWatch
 
 
 def test_the_first_message_ever_is_the_link_coming_up():
     watch = LinkWatch()
-    assert watch.heard(100.0) and watch.returns == 1
+    assert watch.heard(100.0) == link_watch.UP and watch.returns == 1
 
 
 def test_a_steady_stream_gets_the_state_once_a_second():
     watch = LinkWatch(silence_s=0.15, refresh_s=1.0)
-    sends = [k * 0.011 for k in range(500) if watch.heard(k * 0.011)]
-    assert sends == pytest.approx([0.0, 1.001, 2.002, 3.003, 4.004, 5.005])
+    sends = [(k * 0.011, watch.heard(k * 0.011)) for k in range(500)]
+    sends = [(t, what) for t, what in sends if what]
+    assert [t for t, _ in sends] == pytest.approx([0.0, 1.001, 2.002, 3.003, 4.004, 5.005])
+    assert [what for _, what in sends] == [link_watch.UP] + [link_watch.REFRESH] * 5
     assert watch.returns == 1
 
 
@@ -25,7 +28,7 @@ def test_the_first_message_after_a_silence_is_the_link_back_once():
     watch = LinkWatch(silence_s=0.15, refresh_s=1.0)
     watch.heard(0.0)
     assert not watch.heard(0.15)
-    assert watch.heard(0.55)             # an unplug, a stall, a bootloader: no Small State
+    assert watch.heard(0.55) == link_watch.BACK    # an unplug, a stall, a reset: no Small State
     assert not watch.heard(0.56)
     assert watch.returns == 2
     stream = [0.56 + k * 0.011 for k in range(1, 100)]
@@ -83,3 +86,20 @@ def test_no_setpoint_slips_between_control_and_limits():
     restoring.join(5.0)
     ticking.join(5.0)
     assert [name for name, _ in wire.sent] == ['control', 'limits', 'setpoint']
+
+
+def test_hold_and_restore_sends_the_hold_then_control_then_limits():
+    wire = Wire()
+    control = commands.Control(wire.publisher('control'), list)
+    setpoint = commands.Setpoint(wire.publisher('setpoint'), list, control)
+    limit = commands.Limit(wire.publisher('limits'), list)
+    control.set_mode('bend_i', 'torque')
+    setpoint.set('bend_i', 188)
+    setpoint.set('wheels', 37)
+    del wire.sent[:]
+    link_watch.hold_and_restore(setpoint, control, limit)
+    names = [name for name, _ in wire.sent]
+    assert names[0] == 'setpoint' and names[-2:] == ['control', 'limits']
+    assert wire.sent[0][1][tables.element('bend_i').index] == 0
+    assert wire.sent[0][1][tables.element('wheels').index] == 0
+    assert control.mode_of('bend_i') == 'pwm'

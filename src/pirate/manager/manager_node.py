@@ -28,7 +28,7 @@ from actionlib_msgs.msg import GoalStatus
 from std_msgs.msg import Time
 
 from pirate import health, names
-from pirate.robot import commands, link_watch
+from pirate.robot import commands
 from pirate.robot.writers import OneWriter
 from pirate.state.assembler import pab_blocker
 from pirate.state.feed import RobotFeed, RobotView
@@ -41,6 +41,7 @@ from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, 
 from pirate.cfg import SequencerConfig
 from pirate.sequencer import tuning
 from pirate.manager.action_server_ros import QuietActionServer
+from pirate.manager.robot_link import RobotLink
 from pirate.sequencer.primitives import MotionPrimitives
 from pirate.sequencer.server import ABORTED, PREEMPTED, SUCCEEDED, Feedback, PirateServer
 from pirate.srv import ServerStatus, ServerStatusResponse
@@ -152,9 +153,10 @@ class PirateManager(object):
         self._lockstep = (rospy.Publisher(names.LOCKSTEP_TOPIC, Time, queue_size=5)
                           if rospy.get_param('/use_sim_time', False) else None)
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state, queue_size=5)
-        watch = link_watch.LinkWatch()   # the link back: control and limits before any setpoint
-        rospy.Subscriber(names.SMALL_STATE_TOPIC, SmallState, lambda _msg: watch.heard(time.monotonic())
-                         and link_watch.restore(self.control, self.limit), queue_size=50)
+        self._link = RobotLink(self.setpoint, self.control, self.limit, self.server, self._measured_angles,
+                               self._panel_mapper, lambda text: rospy.logwarn('pirate_manager: %s', text))
+        self._link_clock = silence_clock()
+        rospy.Subscriber(names.SMALL_STATE_TOPIC, SmallState, self._on_small_state, queue_size=50)
         self._writers = OneWriter(rospy.get_name())
         self._panel_client = None       # the panel's PabClient, when this manager has a panel
         self._diagnostics = self._diagnose()
@@ -233,6 +235,15 @@ class PirateManager(object):
                                  dict(zip(msg.name, msg.effort)),
                                  {'front': msg.odometry_front, 'rear': msg.odometry_rear},
                                  tuple(bytearray(msg.missed_boards))))
+
+    def _on_small_state(self, _msg):
+        now = self._link_clock()
+        if now:         # simulated time not started yet: no silence to measure
+            self._link.heard(now)
+
+    def _panel_mapper(self):
+        panel = getattr(self, 'panel', None)     # None until the panel is composed
+        return panel.mapper if panel is not None else None
 
     def _measured_angles(self):
         """Joint angles (rad) of a fresh robot state, or None."""

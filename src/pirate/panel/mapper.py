@@ -31,7 +31,12 @@ Rules it enforces (and why):
   (pirate.panel.mission_buttons); while a mission runs its steps are the
   only PABs (a PAB button confirms the step that waits for it, or is
   refused), Stop cancels the mission as well, and a panel that disconnects
-  pauses it (:meth:`panel_connected`).
+  pauses it (:meth:`panel_connected`);
+- after the robot reset or its link re-handshook (:meth:`robot_back`) the
+  setpoints are at the safe hold and nothing the operator set before
+  resumes: a slider or knob acts again when it moves (an event with the
+  value it had before is not a movement) or after Play; the operator is
+  told why it stopped.
 
 Bad input (unknown channel, value outside 0-127 or not an integer, a burst
 of events on one channel) is logged once per reason and ignored.
@@ -41,7 +46,7 @@ passed in, so every rule is unit-tested without ROS.
 """
 import threading
 
-from pirate.robot import commands, safety, tables
+from pirate.robot import commands, link_watch, safety, tables
 from pirate.robot.hold import safe_hold
 from pirate.panel import config as panel_config
 from pirate.panel import manual_guard, mission_buttons
@@ -53,6 +58,8 @@ COMMAND_INDEX = tables.element('rear_module').index
 BLINK_TOGGLES = 6
 #: Why a goal is refused while the panel is stopped.
 STOPPED_REFUSAL = 'the operator panel is stopped: press Play on the panel first'
+#: What the operator is told when the robot comes back (:meth:`Mapper.robot_back`).
+ROBOT_BACK_TOLD = 'stopped: %s; press Play or move a control' % link_watch.BACK_REASON
 
 
 class Mapper(object):
@@ -97,6 +104,8 @@ class Mapper(object):
         self._sent_channel = None   # the PAB button of the last goal sent (its result may come late)
         self._blinks = {}           # button -> LED toggles still to do
         self._ticks = 0             # 10 Hz ticks, the phase of the mission's blink
+        self._settings = {}         # setpoint channel -> the value it last set
+        self._unmoved = {}          # setpoint channel -> its value when the robot came back
         self.mission = mission_buttons.MissionPanel(config.mission_buttons, mission, log)
         self._pab_keys = {e.channel: mission_buttons.goal_key(e.goal)
                           for e in config.channels.values() if e.action == 'pab'}
@@ -187,6 +196,8 @@ class Mapper(object):
         if not self.playing:
             self._tell('stopped', 'stopped: press Play before moving the robot')
             return
+        if self._unmoved.get(entry.channel) == value:
+            return      # the value from before the robot came back: not a movement
         mode = self._control.mode_of(entry.target)
         counts = panel_config.scaled(entry, mode, value)
         if counts is None:
@@ -195,6 +206,8 @@ class Mapper(object):
                            % (entry.control, entry.function, mode))
             return
         self._setpoint.set(entry.target, counts)
+        self._unmoved.pop(entry.channel, None)
+        self._settings[entry.channel] = value
 
     def _on_limit(self, entry, value):
         self._limit.set(entry.target, panel_config.scaled(entry, 'limit', value))
@@ -235,6 +248,7 @@ class Mapper(object):
 
     def _on_play(self, entry, value):
         self.playing = True
+        self._unmoved.clear()
         commands.play(self._control, self._setpoint, self._limit)
         self._run_leds()
         self._log('playing (%s mode)' % self.operation_mode)
@@ -323,6 +337,15 @@ class Mapper(object):
             if not success and self._sent_channel is not None:
                 self._blinks[self._sent_channel] = BLINK_TOGGLES
             self._sent_channel = None
+
+    def robot_back(self):
+        """The robot came back (a Mega reset, a re-handshake of its link) and
+        its setpoints are at the safe hold (:func:`pirate.robot.link_watch.hold_and_restore`):
+        the sliders' and knobs' values from before are not set again until
+        they move or Play is pressed; tell the operator why it stopped."""
+        with self._lock:
+            self._unmoved = dict(self._settings)
+            self._log(ROBOT_BACK_TOLD)
 
     # --- the mission executive's word (the ROS edge calls these) ---------------
 

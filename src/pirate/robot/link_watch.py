@@ -11,8 +11,16 @@ firmware restarted within a cycle) is covered by re-sending every
 :data:`REFRESH_S` while the stream flows. The manager sends control and
 limits at once, under the wire lock the setpoints take, so after a return
 they reach the device before any setpoint. Re-sending them is harmless:
-they are state, and the firmware keeps the newest. Pure: time passed in.
+they are state, and the firmware keeps the newest.
+
+The link back after a silence (:data:`BACK`: the Mega reset, or the link
+was re-negotiated) is more than a re-send: what the robot was doing before
+must not resume unasked. :func:`hold_and_restore` writes the safe hold into
+the setpoints before control and limits go out, so the boards re-arm at the
+hold and stay there until the operator acts again (the Mapper's
+:meth:`pirate.panel.mapper.Mapper.robot_back`). Pure: time passed in.
 """
+from pirate.robot.hold import safe_hold
 
 #: s of Small State silence that count as the link gone: the Mega sends one
 #: message per board, nine per 100 ms cycle (at most ~70 ms apart).
@@ -20,6 +28,12 @@ SILENCE_S = 0.15
 #: s between two re-sends while the stream flows: a reset nobody saw gets
 #: the laptop's state back within this.
 REFRESH_S = 1.0
+#: What a Small State tells (:meth:`LinkWatch.heard`): the link up for the
+#: first time; the link back after a silence (a reset, a re-handshake); a
+#: refresh while it streams.
+UP, BACK, REFRESH = 'up', 'back', 'refresh'
+#: Why a running goal ends when the link comes back.
+BACK_REASON = 'the robot reset (link re-established)'
 
 
 class LinkWatch(object):
@@ -34,17 +48,20 @@ class LinkWatch(object):
         self._sent = None
 
     def heard(self, now):
-        """A Small State arrived at ``now`` (s); True if the state is to be
-        sent: the link just came back (the first message ever, or the first
-        after ``silence_s``), or ``refresh_s`` passed since it was sent."""
-        back = self._last is None or now - self._last > self.silence_s
+        """A Small State arrived at ``now`` (s); what to send, or None:
+        :data:`UP` (the first message ever), :data:`BACK` (the first after
+        ``silence_s``), :data:`REFRESH` (``refresh_s`` after the last send)."""
+        first = self._last is None
+        back = not first and now - self._last > self.silence_s
         self._last = now
-        if back:
+        if first or back:
             self.returns += 1
-        if back or now - self._sent >= self.refresh_s:
             self._sent = now
-            return True
-        return False
+            return UP if first else BACK
+        if now - self._sent >= self.refresh_s:
+            self._sent = now
+            return REFRESH
+        return None
 
 
 def restore(control, limit):
@@ -53,3 +70,12 @@ def restore(control, limit):
     with control.wire_lock:
         control.publish_now()
         limit.publish_now()
+
+
+def hold_and_restore(setpoint, control, limit, angles=None):
+    """The link is back: the safe hold (``angles``: joint rad by name, if
+    known), then control and limits, all under the wire lock, so the boards
+    re-arm at the hold, never at a setpoint from before."""
+    with control.wire_lock:
+        safe_hold(setpoint, control, angles)
+        restore(control, limit)
