@@ -8,6 +8,9 @@ SETPOINT_TOPIC = '/pirate/setpoint_array'     # pirate/SetpointArray
 CONTROL_TOPIC = '/pirate/control_array'       # pirate/ControlArray
 LIMITS_TOPIC = '/pirate/limits_array'         # pirate/LimitArray
 SMALL_STATE_TOPIC = '/pirate/Small_State'     # pirate/SmallState, one per board
+#: std_msgs/Empty from serial_node whenever the device announces itself: the
+#: link up, or announced again while up (a reset device, a re-handshake).
+DEVICE_ANNOUNCED_TOPIC = '/pirate/link/device_announced'
 ROBOT_STATE_TOPIC = '/pirate/state'           # pirate/RobotState, SI units
 JOINT_STATES_TOPIC = '/joint_states'          # sensor_msgs/JointState (RViz)
 IMU_TOPIC = '/pirate/imu'                     # sensor_msgs/Imu, rear-part roll

@@ -35,6 +35,16 @@ def test_the_first_message_after_a_silence_is_the_link_back_once():
     assert [t for t in stream if watch.heard(t)] == pytest.approx([1.55])    # a second after the return
 
 
+def test_an_announcement_after_the_stream_is_the_link_back_once():
+    watch = LinkWatch(silence_s=0.15, refresh_s=1.0)
+    assert watch.announced() is None             # the link up: nothing streamed yet
+    watch.heard(0.0)
+    watch.heard(0.1)
+    assert watch.announced() == link_watch.BACK  # a reset too short to be silence
+    assert watch.heard(0.2) == link_watch.UP     # not a second return
+    assert not watch.heard(0.3)
+
+
 class Wire(object):
     """Publishers of the three arrays, all writing one record, in order."""
 

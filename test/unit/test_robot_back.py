@@ -87,9 +87,12 @@ class Robot(object):
                 self.setpoint.tick()
                 self.limit.tick()
 
-    def reset(self, silence_s=0.4):
-        """The Mega resets: Small State stops, then streams again."""
+    def reset(self, silence_s=0.4, announced=False):
+        """The Mega resets: Small State stops, then streams again; with
+        ``announced`` serial_node hears it announce itself in between."""
         self.now += silence_s
+        if announced:
+            self.link.announced()
 
     def drive(self, wheels=110, bend_i=110):
         """Play; wheels in velocity, Bend I in torque; both sliders pushed up."""
@@ -114,14 +117,16 @@ def robot():
     return robot
 
 
-def test_a_reset_in_manual_drive_keeps_every_setpoint_at_the_hold(robot):
-    robot.reset()
+@pytest.mark.parametrize('silence_s,announced', [(0.4, False), (0.12, True), (0.4, True)],
+                         ids=['silence', 'announced, too short to show', 'announced and silent'])
+def test_a_reset_in_manual_drive_keeps_every_setpoint_at_the_hold(robot, silence_s, announced):
+    robot.reset(silence_s, announced)
     back = len(robot.wire.sent)
     robot.run(6.0)
     after = robot.wire.since(back, 'setpoint')
     assert len(after) >= 55, 'the 10 Hz stream stopped: %d setpoints in 6 s' % len(after)
     assert not driven(after), 'the last manual command resumed after the reset: %s' % driven(after)[0]
-    assert ROBOT_BACK_TOLD in robot.logs
+    assert robot.logs.count(ROBOT_BACK_TOLD) == 1
 
 
 def test_the_hold_goes_out_before_control_and_limits(robot):
@@ -178,3 +183,10 @@ def test_the_link_up_and_its_refreshes_hold_nothing():
     setpoints = robot.wire.since(0, 'setpoint')
     assert len(driven(setpoints)) >= 25 and setpoints[-1][WHEELS] != 0
     assert len(robot.wire.since(0, 'limits')) > 25 and ROBOT_BACK_TOLD not in robot.logs
+
+
+def test_the_first_announcement_holds_nothing():
+    robot = Robot()
+    assert robot.link.announced() is None
+    robot.run(0.5)
+    assert robot.wire.since(0, 'setpoint') == [] and ROBOT_BACK_TOLD not in robot.logs

@@ -31,10 +31,19 @@ class FakeLink(object):
         del self.written[:]          # what the port had not sent yet
 
 
+class Announcements(object):
+    def __init__(self):
+        self.count = 0
+
+    def publish(self, _msg):
+        self.count += 1
+
+
 @pytest.fixture
 def host():
     h = host_module.RosserialHost('/dev/fake', 57600)
     h.link = FakeLink()
+    h._announced = Announcements()      # no master to publish to
     h.session.opened(0.0)
     yield h
     for sub in h._subscribers.values():
@@ -150,6 +159,16 @@ def test_latched_state_is_resent_on_link_up_and_on_reannouncement(host):
     assert [p for _, p in host.outbox.take(host._clock())] == [b'\x03\x00']
     announce(host, protocol.ID_SUBSCRIBER, 102, '/control', Int16)   # device reset
     assert [p for _, p in host.outbox.take(host._clock())] == [b'\x03\x00']
+
+
+def test_the_device_announcing_itself_is_said_on_link_up_and_after_a_reset(host):
+    said = host._announced
+    announce(host, protocol.ID_SUBSCRIBER, 102, '/control', Int16)
+    assert said.count == 0                       # negotiating: not up yet
+    up(host)
+    assert said.count == 1
+    announce(host, protocol.ID_SUBSCRIBER, 102, '/control', Int16)   # device reset
+    assert said.count == 2
 
 
 def test_version_mismatch_is_an_error_on_diagnostics(host, monkeypatch):

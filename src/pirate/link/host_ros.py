@@ -22,7 +22,9 @@ and shows on ``/diagnostics`` at once. The laptop's command state survives
 the link: the latest message of every *latched* publisher the device
 subscribes to is re-sent whenever the link comes up and whenever the
 device announces that subscriber again (after a reset), so control modes
-reach the boards before any setpoint.
+reach the boards before any setpoint. Both are said on
+``names.DEVICE_ANNOUNCED_TOPIC``: the manager holds the robot when a device
+that streamed announces itself again (:mod:`pirate.manager.robot_link`).
 
 Diagnostics through diagnostic_updater (task "serial link") at 1 Hz and at
 every lost sync; a frame of another rosserial protocol version makes it
@@ -36,6 +38,9 @@ import diagnostic_updater
 import rospy
 import roslib.message
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
+from std_msgs.msg import Empty
+
+from pirate import names
 
 from pirate.link import protocol, session as sessions
 from pirate.link.port import SerialLink
@@ -73,6 +78,7 @@ class RosserialHost(object):
         self.counts = dict(frames_out=0, link_ups=0, link_downs=0, deserialize_errors=0,
                            not_up_dropped=0, oversize_refused=0, params_served=0)
         self.services = ServiceBridge(self._send_frame, self._warn, self._given_up)
+        self._announced = rospy.Publisher(names.DEVICE_ANNOUNCED_TOPIC, Empty, queue_size=10)
         self._threads = [threading.Thread(target=self._read_loop, name='rosserial-reader'),
                          threading.Thread(target=self._write_loop, name='rosserial-writer')]
 
@@ -179,6 +185,7 @@ class RosserialHost(object):
         if state == sessions.UP:
             self.counts['link_ups'] += 1
             self._resend_latched(self._latched)
+            self._announced.publish(Empty())
         else:
             # Nothing from before may reach the device: drop queued values and
             # whatever the port has not sent yet.
@@ -269,6 +276,7 @@ class RosserialHost(object):
             # Announced again (a reset device): give it the laptop's state.
             if self.session.state == sessions.UP:
                 self._resend_latched({name: self._latched[name]} if name in self._latched else {})
+                self._announced.publish(Empty())
             return
         if old is not None:   # renegotiated with another type
             old.unregister()

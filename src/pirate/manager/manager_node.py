@@ -25,7 +25,7 @@ import diagnostic_updater
 import dynamic_reconfigure.server
 import rospy
 from actionlib_msgs.msg import GoalStatus
-from std_msgs.msg import Time
+from std_msgs.msg import Empty, Time
 
 from pirate import health, names
 from pirate.robot import commands
@@ -157,6 +157,7 @@ class PirateManager(object):
                                self._panel_mapper, lambda text: rospy.logwarn('pirate_manager: %s', text))
         self._link_clock = silence_clock()
         rospy.Subscriber(names.SMALL_STATE_TOPIC, SmallState, self._on_small_state, queue_size=50)
+        rospy.Subscriber(names.DEVICE_ANNOUNCED_TOPIC, Empty, lambda _msg: self._link.announced(), queue_size=10)
         self._writers = OneWriter(rospy.get_name())
         self._panel_client = None       # the panel's PabClient, when this manager has a panel
         self._diagnostics = self._diagnose()

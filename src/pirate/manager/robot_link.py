@@ -2,13 +2,16 @@
 with the goal that runs, the command arrays and the panel (pure, time
 passed in; :mod:`pirate.robot.link_watch` says when).
 
-The link up, or a refresh: control and limits again. The robot back after
-a silence (a Mega reset, a re-handshake of its link): nothing it did
-before resumes unasked. A running goal ends, the setpoints go to the safe
+The link up, or a refresh: control and limits again. The robot back (a
+Mega reset, a re-handshake of its link: a silence in Small State, or the
+device announcing itself again to serial_node): nothing it did before
+resumes unasked. A running goal ends, the setpoints go to the safe
 hold before control and limits, and the panel drops the operator's
 settings from before and says why the robot stopped
 (:meth:`pirate.panel.mapper.Mapper.robot_back`).
 """
+import threading
+
 from pirate.robot import link_watch
 
 
@@ -24,15 +27,25 @@ class RobotLink(object):
         self._measured = measured
         self._mapper = mapper
         self._log = log
+        self._lock = threading.Lock()   # Small State and announcements come on two threads
 
     def heard(self, now):
         """A Small State at ``now`` (s); return what the link watch made of it."""
-        what = self.watch.heard(now)
-        if what == link_watch.BACK:
-            self._hold()
-        elif what:
-            link_watch.restore(self._control, self._limit)
-        return what
+        with self._lock:
+            what = self.watch.heard(now)
+            if what == link_watch.BACK:
+                self._hold()
+            elif what:
+                link_watch.restore(self._control, self._limit)
+            return what
+
+    def announced(self):
+        """The device announced itself to serial_node; return BACK when that is the robot back."""
+        with self._lock:
+            what = self.watch.announced()
+            if what == link_watch.BACK:
+                self._hold()
+            return what
 
     def _hold(self):
         self._log('%s: setpoints at the safe hold, control modes and limits sent again'

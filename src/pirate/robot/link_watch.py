@@ -13,9 +13,13 @@ limits at once, under the wire lock the setpoints take, so after a return
 they reach the device before any setpoint. Re-sending them is harmless:
 they are state, and the firmware keeps the newest.
 
-The link back after a silence (:data:`BACK`: the Mega reset, or the link
-was re-negotiated) is more than a re-send: what the robot was doing before
-must not resume unasked. :func:`hold_and_restore` writes the safe hold into
+The link back (:data:`BACK`: the Mega reset, or the link was re-negotiated)
+is more than a re-send. It is the first Small State after a silence, or,
+sooner and surer, the device announcing itself again to our serial_node
+(:meth:`LinkWatch.announced`): a Mega restarts in about as long as a
+silence takes to show (firmware in the loop: 0.15-0.17 s of silence), and
+the host hears its announcement before its first Small State. Either way what the robot was doing before
+must not resume unasked: :func:`hold_and_restore` writes the safe hold into
 the setpoints before control and limits go out, so the boards re-arm at the
 hold and stay there until the operator acts again (the Mapper's
 :meth:`pirate.panel.mapper.Mapper.robot_back`). Pure: time passed in.
@@ -62,6 +66,14 @@ class LinkWatch(object):
             self._sent = now
             return REFRESH
         return None
+
+    def announced(self):
+        """The device announced itself to its host (the link up, a reset, a
+        re-handshake): :data:`BACK` if it streamed before (it may have
+        forgotten the laptop's state), else None. Its next Small State is
+        the link up, not a second return."""
+        streamed, self._last = self._last is not None, None
+        return BACK if streamed else None
 
 
 def restore(control, limit):
