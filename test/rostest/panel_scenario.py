@@ -21,6 +21,13 @@ Each test/rostest/panel_*.test holds one scenario as the ``~steps`` param
                                          (active, preempted, succeeded, aborted)
   wait_setpoints_zero: {elements, timeout_s}
                                  the setpoint array on the wire has 0 there
+  expect_setpoints_zero: {elements, for_s}
+                                 every setpoint array on the wire for for_s
+                                 (at least one) has 0 there
+  wait_travel: {min_mm, timeout_s}       the odometry advances min_mm in time
+  expect_no_travel: {tol_mm, for_s}      it advances no more than tol_mm for for_s
+  fault: TEXT                    a fault for the firmware in the loop
+                                 (fil_robot's ~fault: reset, stall 2, ...)
   wait_operator: {contains, timeout_s}   the panel told the operator (the
                                          line the virtual panel shows)
   wait_result: {index, status, timeout_s, message, guard, server_state}
@@ -57,6 +64,8 @@ POLL_S = 0.02
 #: Wall s a step waits for its event unless it says timeout_s: a wait, not a timing
 #: figure (those are in bench/), generous for a busy CI machine.
 EVENT_WAIT_S = 30.0
+#: Where the firmware in the loop takes its faults (pirate.testing.fil_node).
+FAULT_TOPIC = '/fil_robot/fault'
 
 
 class PanelScenario(unittest.TestCase):
@@ -64,7 +73,7 @@ class PanelScenario(unittest.TestCase):
     def setUp(self):
         self.lock = threading.Lock()
         self.angles, self.leds, self.logs, self.statuses, self.setpoints = {}, {}, [], set(), None
-        self.told, self.results = [], []
+        self.told, self.results, self.odometry, self.wire = [], [], None, []
         self.other = SimpleGoalClient(names.PIRATE_ACTION, PirateAction)
         #: What the steps hear, each from a publisher that exists from the start.
         self.ears = [rospy.Subscriber(names.OPERATOR_TOPIC, String, self._on_operator),
@@ -75,11 +84,13 @@ class PanelScenario(unittest.TestCase):
                      rospy.Subscriber(names.SETPOINT_TOPIC, SetpointArray, self._on_setpoints)]
         rospy.Subscriber('/rosout', Log, self._on_log)
         self.pub = rospy.Publisher(names.MIDI_INPUT_TOPIC, MidiInput, queue_size=100)
+        self.faults = rospy.Publisher(FAULT_TOPIC, String, queue_size=5)
 
     # --- recorders ---------------------------------------------------------------
     def _on_state(self, msg):
         with self.lock:
             self.angles = dict(zip(msg.name, msg.position))
+            self.odometry = msg.odometry
 
     def _on_led(self, msg):
         with self.lock:
@@ -105,6 +116,7 @@ class PanelScenario(unittest.TestCase):
     def _on_setpoints(self, msg):
         with self.lock:
             self.setpoints = list(msg.data)
+            self.wire.append(self.setpoints)
 
     # --- helpers ---------------------------------------------------------------------
     def _until(self, condition, timeout_s, what):
@@ -190,6 +202,34 @@ class PanelScenario(unittest.TestCase):
         indices = [tables.element(name).index for name in arg['elements']]
         self._until(lambda: self.setpoints is not None and all(self.setpoints[i] == 0 for i in indices),
                     arg.get('timeout_s', EVENT_WAIT_S), 'zero setpoints at %s' % arg['elements'])
+
+    def step_expect_setpoints_zero(self, arg):
+        indices = [tables.element(name).index for name in arg['elements']]
+        with self.lock:
+            start = len(self.wire)
+        time.sleep(arg['for_s'])
+        with self.lock:
+            sent = self.wire[start:]
+        self.assertTrue(sent, 'no setpoint array on the wire for %.1f s' % arg['for_s'])
+        moving = [s for s in sent if any(s[i] for i in indices)]
+        self.assertFalse(moving, '%d of %d setpoint arrays drive %s, first %s'
+                         % (len(moving), len(sent), arg['elements'], moving[:1]))
+
+    def step_wait_travel(self, arg):
+        with self.lock:
+            start = self.odometry
+        self._until(lambda: abs(self.odometry - start) >= arg['min_mm'], arg.get('timeout_s', EVENT_WAIT_S),
+                    lambda: 'the odometry to advance %.0f mm (%.1f mm)' % (arg['min_mm'], self.odometry - start))
+
+    def step_expect_no_travel(self, arg):
+        with self.lock:
+            start = self.odometry
+        self._during(lambda: abs(self.odometry - start) <= arg['tol_mm'], arg['for_s'],
+                     lambda: 'the robot travelled %.1f mm' % (self.odometry - start))
+
+    def step_fault(self, text):
+        self._until(lambda: self.faults.get_num_connections() > 0, 30, 'fil_robot to listen for faults')
+        self.faults.publish(String(data=text))
 
     def step_wait_operator(self, arg):
         self._until(lambda: any(arg['contains'] in line for line in self.told),
