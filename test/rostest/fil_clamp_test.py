@@ -6,6 +6,10 @@
 2. Unplug mid-PAB: the PAB aborts (the state stops flowing), the firmware
    stops every motor on its own; after replugging (the Mega resets) the
    link comes back and the next goal succeeds.
+3. Reset mid-PAB (the Mega restarts with the cable in, too fast for the
+   state to go stale): the goal ends, saying so, and nothing is re-armed:
+   every setpoint array on the wire holds the wheels and the bends at 0
+   and the robot does not travel.
 """
 import time
 import unittest
@@ -18,10 +22,13 @@ import ready
 from std_msgs.msg import String
 
 from pirate import names
-from pirate.msg import PirateAction, PirateGoal, RobotState
+from pirate.msg import PirateAction, PirateGoal, RobotState, SetpointArray
+from pirate.robot import link_watch, tables
 from pirate.supervisory.goal_client_ros import SimpleGoalClient
 
 FAULT_TOPIC = '/fil_robot/fault'
+#: The setpoint elements the safe hold puts at 0 (pirate.robot.hold).
+HELD = [tables.element(name).index for name in ('front_tilt', 'bend_i', 'bend_ii', 'bend_iii', 'bend_iv', 'wheels')]
 
 
 class FilClampTest(unittest.TestCase):
@@ -30,9 +37,13 @@ class FilClampTest(unittest.TestCase):
         self.client = SimpleGoalClient(names.PIRATE_ACTION, PirateAction)
         self.assertTrue(self.client.wait_for_server(rospy.Duration(60)), 'no Pirate Server')
         self.fault = rospy.Publisher(FAULT_TOPIC, String, queue_size=5)
-        self.states = []
+        self.states, self.odometry, self.wire = [], [], []
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState,
                          lambda m: self.states.append((time.monotonic(), m.stale)), queue_size=50)
+        rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, lambda m: self.odometry.append(m.odometry),
+                         queue_size=50)
+        rospy.Subscriber(names.SETPOINT_TOPIC, SetpointArray, lambda m: self.wire.append(list(m.data)),
+                         queue_size=50)
         deadline = time.monotonic() + 60
         while not any(not stale for _, stale in self.states[-5:]):
             self.assertLess(time.monotonic(), deadline, 'no fresh robot state through FIL')
@@ -79,6 +90,30 @@ class FilClampTest(unittest.TestCase):
         self.assertTrue(self.client.wait_for_result(rospy.Duration(120)), 'no result')
         result = self.client.get_result()
         self.assertTrue(result.success, result.message)
+
+    def test_3_reset_mid_pab_ends_the_goal_and_rearms_nothing(self):
+        self.client.send_goal(PirateGoal(name=PirateGoal.HOME, pipe_diameter=90))
+        self.assertTrue(self.client.wait_for_result(rospy.Duration(120)), 'home: no result')
+        primitives = []
+        self._clamp(lambda fb: primitives.append(fb.primitive))
+        deadline = time.monotonic() + 30
+        while not primitives:
+            self.assertLess(time.monotonic(), deadline, 'PAB never started')
+            time.sleep(0.05)
+        time.sleep(1.0)   # mid-PAB
+        self.fault.publish(String('reset'))
+        self.assertTrue(self.client.wait_for_result(rospy.Duration(30)), 'no result after the reset')
+        result = self.client.get_result()
+        self.assertFalse(result.success, 'the PAB went on through a reset')
+        self.assertIn(link_watch.BACK_REASON, result.message)
+        sent, odometry = len(self.wire), self.odometry[-1]
+        time.sleep(3.0)
+        after = self.wire[sent:]
+        self.assertTrue(after, 'no setpoint array on the wire for 3 s')
+        moving = [s for s in after if any(s[i] for i in HELD)]
+        self.assertFalse(moving, '%d of %d setpoint arrays after the reset move a joint: %s'
+                         % (len(moving), len(after), moving[:1]))
+        self.assertLess(abs(self.odometry[-1] - odometry), 10.0, 'the robot travelled after the reset')
 
 
 if __name__ == '__main__':
