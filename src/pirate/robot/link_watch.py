@@ -16,13 +16,14 @@ they are state, and the firmware keeps the newest.
 The link back (:data:`BACK`: the Mega reset, or the link was re-negotiated)
 is more than a re-send. It is the first Small State after a silence, or,
 sooner and surer, the device announcing itself again to our serial_node
-(:meth:`LinkWatch.announced`): a Mega restarts in about as long as a
-silence takes to show (firmware in the loop: 0.15-0.17 s of silence), and
-the host hears its announcement before its first Small State. Either way what the robot was doing before
-must not resume unasked: :func:`hold_and_restore` writes the safe hold into
-the setpoints before control and limits go out, so the boards re-arm at the
-hold and stay there until the operator acts again (the Mapper's
-:meth:`pirate.panel.mapper.Mapper.robot_back`). Pure: time passed in.
+(:meth:`LinkWatch.announced`): a Mega restarts in little more than a
+silence takes to show (doc/measurements.md, link-recovery), and the host
+hears its announcement before its first Small State. Either way what the
+robot was doing before must not resume unasked: :func:`hold_and_restore`
+writes the safe hold into the setpoints before control and limits go out,
+so the boards re-arm at the hold and stay there until the operator acts
+again (the Mapper's :meth:`pirate.panel.mapper.Mapper.robot_back`).
+Pure: time passed in.
 """
 from pirate.robot.hold import safe_hold
 
