@@ -28,11 +28,20 @@ def test_the_first_message_after_a_silence_is_the_link_back_once():
     watch = LinkWatch(silence_s=0.15, refresh_s=1.0)
     watch.heard(0.0)
     assert not watch.heard(0.15)
-    assert watch.heard(0.55) == link_watch.BACK    # an unplug, a stall, a reset: no Small State
+    assert watch.heard(0.55) == link_watch.UP      # a stall, a late laptop: no Small State
     assert not watch.heard(0.56)
     assert watch.returns == 2
     stream = [0.56 + k * 0.011 for k in range(1, 100)]
     assert [t for t in stream if watch.heard(t)] == pytest.approx([1.55])    # a second after the return
+
+
+def test_a_long_silence_is_the_robot_back():
+    watch = LinkWatch(silence_s=0.15, refresh_s=1.0, reset_silence_s=0.5)
+    watch.heard(0.0)
+    assert watch.heard(0.5) == link_watch.UP
+    assert watch.heard(1.01) == link_watch.BACK    # an unplug, a reset in its bootloader
+    assert not watch.heard(1.02)
+    assert watch.returns == 3
 
 
 def test_an_announcement_after_the_stream_is_the_link_back_once():
