@@ -1,6 +1,7 @@
-"""What the manager does with each Small State: the link watch composed
-with the goal that runs, the command arrays and the panel (pure, time
-passed in; :mod:`pirate.robot.link_watch` says when).
+"""What the manager does with each Small State and each announcement of
+the device: the link watch composed with the goal that runs, the command
+arrays and the panel (pure, time passed in; :mod:`pirate.robot.link_watch`
+says when).
 
 The link up, or a refresh: control and limits again. The robot back (a
 Mega reset, a re-handshake of its link: a silence in Small State, or the
