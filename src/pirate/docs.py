@@ -20,6 +20,7 @@ from pirate import paths
 from pirate.panel import doc_table
 from pirate.sequencer.pabs import clamp, drive, home, junction_table
 from pirate.sequencer.pabs.table_doc import markdown
+from pirate.sim import twin_sources
 
 GENERATED = (
     ('doc/sequencer.md', 'clamp-table', lambda: markdown(clamp.MACHINE)),
@@ -28,6 +29,7 @@ GENERATED = (
     ('doc/sequencer.md', 'junction-table', lambda: markdown(junction_table.MACHINES['front'])),
     ('doc/sequencer.md', 'junction-rear-first-table', lambda: markdown(junction_table.MACHINES['rear'])),
     ('doc/panel.md', 'panel-controls', doc_table.generate),
+    ('doc/twin.md', 'twin-constants', twin_sources.markdown),
 )
 
 BEGIN = '<!-- generated: %s (make docs) -->'

@@ -5,7 +5,7 @@ every PICO sample (50 Hz), from what the board itself senses. The results
 are MuJoCo actuator targets (pirate.sim.twin): a bend's worm-side angle
 (the series spring's far end), a gear motor's output angle, the rotation
 target, a wheel's speed. Pure: no MuJoCo, no ROS; constants from
-config/twin.yaml with their sources.
+config/twin.yaml, their sources in config/twin_sources.yaml.
 """
 import math
 

@@ -24,8 +24,8 @@ positive bend lifts the far end of the module further from the middle
 (inner bends +e, outer -2e in a clamp, SPEC 7). Robot frame: x forward,
 y left, z up when upright (roll pi/2, Fig 4.7); the root is the rear half
 of the rotational module, carrying the IMU (board 25, Table B.1).
-Pure: writes MJCF elements; masses, sizes and their sources are in
-config/twin.yaml.
+Pure: writes MJCF elements; masses and sizes are in config/twin.yaml,
+their sources in config/twin_sources.yaml.
 """
 import math
 import xml.etree.ElementTree as ET
