@@ -331,15 +331,13 @@ def test_a_route_through_a_bend_after_a_long_drive_and_past_a_side_tee_needs_no_
 
 
 def test_a_mission_there_and_back_through_a_bend_and_a_t_joint_ends_at_the_launch_pit():
-    """inspection_network_90 with a point past its T-joint: launch pit ->
+    """inspection_network_90 to its point past the T-joint: launch pit ->
     past the T-joint -> launch pit. On the way in the mitre bend LEFT and the
     T-joint (open upward) straight on front first; on the way back the
     T-joint and the bend rear first (negative search distances), re-anchored
     at each; the robot ends at the launch pit (ground truth within 100 mm:
     the last drive is by odometry from where the bend taken rear first ends)."""
-    with open(network.world_path('inspection_network_90')) as stream:
-        layout = yaml.safe_load(stream)
-    pipe_map = network.build(dict(layout, points=layout['points'] + [{'name': 'past_tee', 'at_mm': 3200}]))
+    pipe_map = network.load(network.world_path('inspection_network_90'))
     plan = planner.plan(pipe_map, ['launch_pit', 'past_tee', 'launch_pit'], SETTINGS, MAX_DRIVE_MM, None, True)
     planner.check_runnable(plan)
     with SimHarness(world='inspection_network_90', orientation=UPRIGHT, seed=11) as h:

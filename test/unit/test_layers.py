@@ -54,6 +54,7 @@ ROS_MODULES = (
     'pirate.link.host_ros',
     'pirate.link.service_bridge_ros',
     'pirate.inspection.inspection_node',
+    'pirate.inspection.job_node',
     'pirate.manager.action_server_ros',
     'pirate.manager.manager_node',
     'pirate.panel.mapper_ros',

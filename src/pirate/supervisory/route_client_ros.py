@@ -45,7 +45,8 @@ def run_route(args, out=print):
         except planner.PlanError as refused:
             print('run_mission: %s' % refused, file=sys.stderr)
             return 2
-    rospy.init_node('run_mission', anonymous=True)
+    if not rospy.core.is_initialized():     # a caller's node (inspection_job) sends it as itself
+        rospy.init_node('run_mission', anonymous=True)
     client = SimpleGoalClient(names.MISSION_ACTION, MissionAction)
     if not wait_for_server(client, WAIT_FOR_SERVER_S):
         print('run_mission: no mission executive at %s (roslaunch pirate mission_executive.launch)'

@@ -1,0 +1,86 @@
+"""An inspection job: a route there and back and the findings to mark on it (pure).
+
+A job file (config/missions/inspection_demo.yaml) names the pipe map, the
+route's points (visited in order, the first and the last the launch pit)
+and the marks: each a kind (:data:`pirate.inspection.findings.KINDS`), the
+operator's note, and where it is marked: when the mission's estimate of
+the robot's middle first passes ``along_mm`` (mm along the map) on the
+``leg`` named, ``in`` (before the route's farthest point) or ``back``.
+"""
+import collections
+
+import yaml
+
+from pirate.inspection import findings
+
+Job = collections.namedtuple('Job', 'map points marks')
+Mark = collections.namedtuple('Mark', 'along_mm leg kind note')
+LEGS = ('in', 'back')
+
+
+class JobError(ValueError):
+    """A job file that cannot be run: says what is wrong."""
+
+
+def load(path):
+    """The :data:`Job` in the YAML file ``path``; :class:`JobError` naming what is wrong."""
+    try:
+        with open(path) as stream:
+            data = yaml.safe_load(stream)
+    except (IOError, OSError, yaml.YAMLError) as error:
+        raise JobError('%s: %s' % (path, error))
+    if not isinstance(data, dict) or not isinstance(data.get('map'), str):
+        raise JobError('%s: a job names its map (map: NAME)' % path)
+    points = data.get('route')
+    if not isinstance(points, list) or len(points) < 2 or not all(isinstance(p, str) for p in points):
+        raise JobError('%s: route: the names of two points or more, in order' % path)
+    return Job(data['map'], points, [_mark(path, k, entry) for k, entry in enumerate(data.get('marks') or [], 1)])
+
+
+def _mark(path, number, entry):
+    where = '%s: mark %d' % (path, number)
+    if not isinstance(entry, dict):
+        raise JobError('%s: {along_mm, leg, kind, note}, not %r' % (where, entry))
+    unknown = set(entry) - set(Mark._fields)
+    if unknown:
+        raise JobError('%s: unknown key(s) %s (along_mm, leg, kind, note)' % (where, ', '.join(sorted(unknown))))
+    along = entry.get('along_mm')
+    if isinstance(along, bool) or not isinstance(along, (int, float)) or along < 0:
+        raise JobError('%s: along_mm must be a distance in mm >= 0, not %r' % (where, along))
+    if entry.get('leg', 'in') not in LEGS:
+        raise JobError('%s: leg must be one of %s, not %r' % (where, ', '.join(LEGS), entry.get('leg')))
+    try:
+        kind = findings.check_kind(entry.get('kind', 'other'))
+    except findings.FindingError as error:
+        raise JobError('%s: %s' % (where, error))
+    return Mark(float(along), entry.get('leg', 'in'), kind, str(entry.get('note', '')))
+
+
+class DueMarks(object):
+    """Which marks are due as the mission goes: a mark is due once, when
+    the estimate passes its ``along_mm`` (either way, a re-anchoring jump
+    included) on its leg; the leg is ``back`` from the first step the
+    robot takes rear first (a negative distance) on."""
+
+    def __init__(self, marks):
+        self._left = list(marks)
+        self._last = None
+        self.leg = 'in'
+
+    def step(self, distance_mm):
+        """The mission's running step has the signed distance ``distance_mm``."""
+        if distance_mm < 0:
+            self.leg = 'back'
+
+    def passed(self, along_mm):
+        """The marks due now the estimate is at ``along_mm``, in the order passed."""
+        last = along_mm if self._last is None else self._last
+        self._last = along_mm
+        low, high = min(last, along_mm), max(last, along_mm)
+        due = [m for m in self._left if m.leg == self.leg and low <= m.along_mm <= high]
+        self._left = [m for m in self._left if m not in due]
+        return sorted(due, key=lambda m: m.along_mm, reverse=along_mm < last)
+
+    def left(self):
+        """The marks not yet due."""
+        return list(self._left)

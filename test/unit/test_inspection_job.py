@@ -1,0 +1,70 @@
+"""An inspection job's file and which marks fall due as the estimate moves (pirate.inspection.job)."""
+import pytest
+
+from pirate.inspection import job as jobs
+from pirate.inspection.job_node import DEFAULT_JOB
+from pirate.supervisory import planner
+from pirate.supervisory.plan_cli import load_settings
+from pirate.world import network
+
+GOOD = 'map: inspection_network_90\nroute: [launch_pit, past_tee, launch_pit]\nmarks:\n'
+
+
+def _load(tmp_path, text):
+    path = tmp_path / 'job.yaml'
+    path.write_text(text)
+    return jobs.load(str(path))
+
+
+def test_the_demo_job_plans_there_and_back_and_marks_within_the_route():
+    job = jobs.load(DEFAULT_JOB)
+    settings, max_drive_mm = load_settings()
+    pipe_map = network.load(network.world_path(job.map))
+    plan = planner.plan(pipe_map, job.points, settings, max_drive_mm, None, True)
+    planner.check_runnable(plan)
+    farthest_mm = max(pipe_map.points[p] for p in job.points) * 1000
+    nearest_mm = min(pipe_map.points[p] for p in job.points) * 1000
+    assert job.marks and all(nearest_mm < m.along_mm < farthest_mm for m in job.marks), job.marks
+    assert {m.leg for m in job.marks} == {'in', 'back'}
+
+
+@pytest.mark.parametrize('text, said', [
+    ('route: [a, b]\n', 'names its map'),
+    ('map: m\nroute: [a]\n', 'two points or more'),
+    (GOOD + '  - {along_mm: -5, kind: leak}\n', 'along_mm must be a distance'),
+    (GOOD + '  - {along_mm: true, kind: leak}\n', 'along_mm must be a distance'),
+    (GOOD + '  - {along_mm: 5, leg: sideways}\n', 'leg must be one of in, back'),
+    (GOOD + '  - {along_mm: 5, kind: gold}\n', "kind 'gold' is not one of"),
+    (GOOD + '  - {along_mm: 5, knd: leak}\n', 'unknown key(s) knd'),
+    (GOOD + '  - 5\n', 'mark 1: {along_mm, leg, kind, note}'),
+    ('map: [\n', 'job.yaml'),
+])
+def test_a_bad_job_file_is_refused_naming_what_is_wrong(tmp_path, text, said):
+    with pytest.raises(jobs.JobError) as refused:
+        _load(tmp_path, text)
+    assert said in str(refused.value)
+
+
+def _marks(*rows):
+    return [jobs.Mark(along, leg, kind, '') for along, leg, kind in rows]
+
+
+def test_marks_fall_due_once_as_the_estimate_passes_them_on_their_leg():
+    marks = _marks((800, 'in', 'leak'), (2190, 'in', 'water'), (2190, 'back', 'water'), (5000, 'in', 'crack'))
+    due = jobs.DueMarks(marks)
+    # (signed distance of the running step, estimate): in, a re-anchoring jump back
+    # at the T-joint, on to the far point, then back rear first
+    path = [(0, 400), (500, 790), (500, 830), (700, 2100), (700, 2000), (700, 2200), (700, 2250), (900, 3200),
+            (-900, 3150), (-900, 3050), (-700, 2300), (-700, 2150), (-700, 2250), (-700, 800), (0, 400)]
+    seen = []
+    for distance, along in path:
+        due.step(distance)
+        seen.append((along, [m.kind + '/' + m.leg for m in due.passed(along)]))
+    assert [s for s in seen if s[1]] == [(830, ['leak/in']), (2200, ['water/in']), (2150, ['water/back'])]
+    assert [m.kind for m in due.left()] == ['crack']
+
+
+def test_marks_passed_in_one_step_come_in_the_order_passed():
+    due = jobs.DueMarks(_marks((900, 'in', 'leak'), (850, 'in', 'crack')))
+    due.passed(800)
+    assert [m.kind for m in due.passed(1000)] == ['crack', 'leak']
