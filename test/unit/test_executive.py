@@ -14,7 +14,7 @@ from pirate import paths
 from pirate.sequencer.junctions import is_turn
 from pirate.supervisory import executive as ex
 from pirate.supervisory import planner
-from pirate.supervisory.localiser import Localiser, sensed_at_m
+from pirate.supervisory.localiser import Localiser, MapMismatch, sensed_at_m
 from pirate.world import network
 
 with open(os.path.join(paths.CONFIG_DIR, 'supervisory.yaml')) as _f:
@@ -374,6 +374,75 @@ def test_a_junction_not_found_where_the_map_has_one_stops_the_mission():
     outcome = mission(robot).run()
     assert outcome.status == 'mismatch' and 'mitre_1 not found' in outcome.message
     assert [g[0] for g in robot.goals].count('MITRE_BEND') == 1
+
+
+def test_a_junction_further_on_than_the_map_says_is_searched_for_only_as_far_as_the_map_allows():
+    """The pipe's bend 300 mm further on than the map has it: the junction PAB
+    is sent to search from the estimate to the map's bend plus the
+    localiser's uncertainty there (less than the plan's search), reports the
+    junction missing at that bound, and the mission stops: no step after it
+    (no turn, no retry), and the reason names where the map has the bend,
+    from where to where along the map it was looked for and how far the
+    estimate may be off there."""
+    robot = FakeRobot(0.3, shift_mm=300)
+    outcome = mission(robot).run()
+    # from the planned stop (2000 - 315 - 100 mm) the bend is sensed with the middle at its
+    # entry (sense_turn_mm 0); 1285 mm from the anchor, d - 415 = 150 + 0.05 (1285 + d)
+    bound_mm = (415.0 + 150.0 + 0.05 * 1285.0) / 0.95
+    assert round(bound_mm) == 662 < SETTINGS['search_mm']
+    assert robot.goals == [('CLAMP_SIDEWAYS', 'LEFT', 0), ('DRIVE', None, 1285), ('MITRE_BEND', 'LEFT', 662)]
+    assert outcome.status == 'mismatch', outcome.message
+    assert ('mitre_1 not found within 662 mm: the map has it at 2000 mm (the robot\'s middle at 2000 mm when it '
+            'senses it); searched from 1585 to 2247 mm along the map, the estimate within 247 mm there'
+            in outcome.message), outcome.message
+    assert outcome.message in outcome.log[-1]
+
+
+def test_an_estimate_already_beyond_the_reach_of_the_maps_junction_sends_no_junction_pab():
+    robot = FakeRobot(0.3)
+    drive = robot.run
+
+    def overshooting(step):
+        report = drive(step)
+        if step.pab == 'DRIVE':
+            robot.start_m -= 0.8                       # counted 800 mm more than planned
+            report = report._replace(odometry_mm=robot.odometry())
+        return report
+    robot.run = overshooting
+    outcome = mission(robot).run()
+    assert [g[0] for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE']
+    assert outcome.status == 'mismatch' and 'mitre_1 not found within 0 mm' in outcome.message, outcome.message
+
+
+@pytest.mark.parametrize('start_m, moved_mm, sign, junction_mm', [
+    (0.3, 200.0, 1, 2000.0), (3.0, -200.0, -1, 2000.0),      # on from the anchor, forward and back
+    (1.2, -200.0, 1, 1500.0), (2.0, -1000.0, 1, 1200.0)])    # back behind it, then forward: both sides
+def test_the_search_ends_where_a_junction_sensed_would_no_longer_be_the_maps(start_m, moved_mm, sign, junction_mm):
+    """A junction sensed at the search's far end (within 0.01 mm) is taken for the map's; 1 mm
+    further on it is a mismatch; the estimate on from the anchor or behind it."""
+    tee_map = network.build({'name': 'tee', 'diameter_mm': 90, 'pieces': [
+        {'type': 'straight', 'length_mm': junction_mm}, {'type': 'tee', 'enter': 'run', 'side': 'up'},
+        {'type': 'straight', 'length_mm': 2000}]})
+    (tee,) = planner.junctions(tee_map)
+    for beyond_mm, taken in ((-0.01, True), (1.0, False)):
+        localiser = Localiser(start_m, SETTINGS)
+        localiser.update(0.0)
+        localiser.update(moved_mm)
+        search = localiser.search(tee, sign, 5000.0)
+        assert search.from_m == pytest.approx(start_m + moved_mm / 1000.0) and sign * (search.to_m - search.from_m) > 0
+        odometry_mm = (search.to_m - start_m) * 1000.0 + sign * beyond_mm
+        if taken:
+            localiser.junction_found(tee, odometry_mm, sign)
+        else:
+            with pytest.raises(MapMismatch):
+                localiser.junction_found(tee, odometry_mm, sign)
+
+
+def test_the_search_is_no_longer_than_the_plans():
+    (mitre,) = planner.junctions(MAP)
+    localiser = Localiser(0.3, SETTINGS)
+    search = localiser.search(mitre, 1, 250.0)
+    assert search.to_m == pytest.approx(0.55) and search.from_m == pytest.approx(0.3)
 
 
 def test_the_way_back_reanchors_at_the_junction_rear_first():

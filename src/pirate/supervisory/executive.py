@@ -11,7 +11,11 @@ What a gas-network inspector expects of it:
   (the first such re-clamp of a step spends no retry: :class:`Tries`);
 - **localisation**: every report moves the estimate along the map; every
   junction a PAB finds re-anchors it, and a junction where the map has none,
-  or none where it has one, stops the mission (pirate.supervisory.localiser);
+  or none where it has one, stops the mission (pirate.supervisory.localiser).
+  A junction PAB searches only as far as the map's place plus the
+  localiser's tolerance there (at most the plan's search): one that ends
+  ``junction_missing`` there stops the mission in the safe hold before the
+  robot takes a junction further on, naming where it looked;
 - **autonomy levels** (as FlexBE's, set from the panel): ``full`` runs every
   step, ``confirm`` waits before each PAB for the operator's confirmation,
   ``manual`` only shows the plan. The level may change at any time; it
@@ -42,7 +46,7 @@ import threading
 
 from pirate.sequencer.junctions import is_turn
 from pirate.supervisory import durations
-from pirate.supervisory.localiser import MapMismatch
+from pirate.supervisory.localiser import MapMismatch, searched_mm
 
 FULL, CONFIRM, MANUAL = 'full', 'confirm', 'manual'
 LEVELS = (FULL, CONFIRM, MANUAL)
@@ -129,6 +133,7 @@ class Executive(object):
         self._paused = self._cancelled = self._running = False
         self._confirmed = -1
         self.step_index, self.state, self.waiting_for = 0, 'ready', ''
+        self.search = None      # the localiser's Search of the junction step that runs
 
     # --- operator side, any thread ----------------------------------------
     def pause(self, reason=''):
@@ -216,10 +221,9 @@ class Executive(object):
             self._await_go(step)
             if resuming and not turn_begun and step.holds is not None and not self.robot.clamped():
                 self._reclamp(step, 'resume')
-            todo = self._remaining(step)
+            todo = self._remaining(step, turn_begun)
             if todo is None:
-                with self._cond:
-                    self._running = False
+                self._not_running()
                 return None
             report = self._goal(todo)
             if report.status == 'succeeded':
@@ -238,7 +242,7 @@ class Executive(object):
                 raise Stop('cancelled', 'step %d (%s) was cancelled outside the mission: %s'
                            % (self.step_index + 1, step.pab, report.message))
             if report.junction_missing:
-                raise Stop('mismatch', str(self.localiser.junction_missing(step.junction, abs(step.distance_mm))))
+                raise Stop('mismatch', str(self.localiser.junction_missing(self.search)))
             refused_at_start = report.status == 'rejected' and self._reclamp_may_help(step)
             if (report.status == 'rejected' and not refused_at_start) or not tries.spend(refused_at_start):
                 raise Stop('aborted', 'step %d (%s) %s: %s' % (self.step_index + 1, step.pab, report.status,
@@ -342,7 +346,7 @@ class Executive(object):
         if step.junction is None:
             return
         if report.junction_odometry_mm is None:
-            raise Stop('mismatch', str(self.localiser.junction_missing(step.junction, abs(step.distance_mm))))
+            raise Stop('mismatch', str(self.localiser.junction_missing(self.search)))
         try:
             mapped = self.localiser.junction_found(step.junction, report.junction_odometry_mm,
                                                    1 if step.distance_mm > 0 else -1)
@@ -362,13 +366,35 @@ class Executive(object):
             raise Stop('aborted', 're-clamp before the %s of step %d failed: %s'
                        % (why, self.step_index + 1, report.message))
 
-    def _remaining(self, step):
+    def _not_running(self):
+        with self._cond:
+            self._running = False
+
+    def _remaining(self, step, turn_begun=False):
         """A Drive goes from where the robot is estimated to be to the step's
-        end: only what is left of it when resumed or retried (None: nothing)."""
+        end: only what is left of it when resumed or retried (None: nothing).
+        A junction step searches as far as the map lets it (:meth:`_bounded`),
+        but a turn that had begun is sent as planned: it goes on from where
+        the robot is and searches nothing."""
+        if step.junction is not None and not turn_begun:
+            return self._bounded(step)
         if step.pab != 'DRIVE':
             return step
         left_mm = (step.end_m - self.localiser.along_m) * 1000.0
         return step._replace(distance_mm=left_mm) if abs(left_mm) >= self.settings['min_drive_mm'] else None
+
+    def _bounded(self, step):
+        """``step`` searching only as far as a junction sensed there would
+        still be the map's (pirate.supervisory.localiser Search), at most the
+        plan's search distance; :class:`Stop` when the estimate is already
+        beyond it (nothing sent)."""
+        sign = 1 if step.distance_mm > 0 else -1
+        self.search = self.localiser.search(step.junction, sign, abs(step.distance_mm))
+        distance_mm = searched_mm(self.search)
+        if distance_mm < self.settings['min_drive_mm']:
+            self._not_running()
+            raise Stop('mismatch', str(self.localiser.junction_missing(self.search)))
+        return step._replace(distance_mm=sign * distance_mm)
 
     def _retries(self, step):
         default = self.policy.get('default', self.settings['policy'])

@@ -5,7 +5,10 @@ pipe's axis), so the estimate is re-anchored where the map is certain: at
 a junction a junction PAB has detected. A junction found where the map and
 odometry do not put one (farther than the tolerance), or none found where
 the map has one, means the map disagrees with the pipe: :class:`MapMismatch`,
-and the mission stops safe.
+and the mission stops safe. The same tolerance bounds the search: a
+junction PAB looks only as far as a junction sensed there would still be
+the map's (:meth:`Localiser.search`), so a junction further on than the map
+says is not taken for it.
 
 Positions are metres along the map's path of the robot's middle (as in
 pirate.supervisory.planner); odometry is the robot's wheel odometry in mm,
@@ -18,6 +21,12 @@ from pirate.sequencer.junctions import is_turn
 
 #: One junction's check: the junction, where odometry put the robot (m) and where the map does (m).
 Fix = collections.namedtuple('Fix', 'junction estimated_m mapped_m')
+#: Where a junction PAB looks for the map's ``junction`` driving ``sign`` (1
+#: forward, -1 back): where the map has it (``expected_m``: the robot's
+#: middle when it senses it), from the estimate where the search starts to
+#: the farthest it may go (``from_m``, ``to_m``), and how far the estimate
+#: may be off there (``uncertainty_m``); all m along the map.
+Search = collections.namedtuple('Search', 'junction sign expected_m from_m to_m uncertainty_m')
 
 
 class MapMismatch(RuntimeError):
@@ -53,7 +62,34 @@ class Localiser(object):
         """How far the robot may be from :meth:`estimate` (m): the bound
         within which the localiser takes a junction to be the map's, the
         tolerance plus the drift over the distance since the anchor."""
-        return self._tolerance_m + self._drift * abs(self.estimate(odometry_mm) - self.anchor_m)
+        return self._uncertainty_at(self.estimate(odometry_mm))
+
+    def _uncertainty_at(self, along_m):
+        """:meth:`uncertainty_m` with the estimate at ``along_m`` (m along)."""
+        return self._tolerance_m + self._drift * abs(along_m - self.anchor_m)
+
+    def search(self, junction, sign, limit_mm):
+        """The :data:`Search` for ``junction`` from the estimate now, driving
+        ``sign``: as far as a junction sensed there would still be the map's
+        (:meth:`junction_found`: the map's place plus the uncertainty there),
+        at most ``limit_mm`` of odometry; nothing (``to_m`` = ``from_m``)
+        when the estimate is already beyond it."""
+        expected = sensed_at_m(junction, sign, self._robot)
+        reach_m = min(max(self._reach_m(expected, sign), 0.0), limit_mm / 1000.0)
+        to_m = self.along_m + sign * reach_m
+        return Search(junction, sign, expected, self.along_m, to_m, self._uncertainty_at(to_m))
+
+    def _reach_m(self, expected_m, sign):
+        """How far (m) the estimate may go ``sign``-wards before a junction
+        sensed there lies farther than :meth:`uncertainty_m` beyond
+        ``expected_m``: the root of d - ahead = tolerance + drift |beyond + d|
+        (``ahead``: expected beyond the estimate, ``beyond``: the estimate
+        beyond the anchor, both the way it drives), one per side of the anchor."""
+        ahead, beyond = sign * (expected_m - self.along_m), sign * (self.along_m - self.anchor_m)
+        past_anchor = (self._tolerance_m + ahead + self._drift * beyond) / (1.0 - self._drift)
+        if beyond + past_anchor >= 0.0:
+            return past_anchor
+        return (self._tolerance_m + ahead - self._drift * beyond) / (1.0 + self._drift)
 
     def junction_found(self, junction, odometry_mm, sign):
         """A junction PAB detected ``junction`` (its leading V lost the wall)
@@ -80,9 +116,20 @@ class Localiser(object):
         self.anchor_m, self.anchor_odometry, self.along_m = end_m, odometry_mm, end_m
 
     @staticmethod
-    def junction_missing(junction, searched_mm):
-        """The map's junction was not found within the search distance."""
-        return MapMismatch('%s not found within %.0f mm of where the map has it' % (junction.name, searched_mm))
+    def junction_missing(search):
+        """The map's junction was not found where :data:`Search` ``search`` looked."""
+        junction, sign = search.junction, search.sign
+        return MapMismatch('%s not found within %.0f mm: the map has it at %.0f mm (the robot\'s middle at %.0f mm '
+                           'when it senses it); searched from %.0f to %.0f mm along the map, the estimate within '
+                           '%.0f mm there; the robot is held where it stopped'
+                           % (junction.name, searched_mm(search), (junction.entry_m if sign > 0 else junction.exit_m)
+                              * 1000, search.expected_m * 1000, search.from_m * 1000, search.to_m * 1000,
+                              search.uncertainty_m * 1000))
+
+
+def searched_mm(search):
+    """How far (mm of odometry) :data:`Search` ``search`` lets the junction PAB drive."""
+    return abs(search.to_m - search.from_m) * 1000.0
 
 
 def sensed_at_m(junction, sign, robot):
