@@ -158,14 +158,33 @@ def test_an_edge_the_front_never_gets_past_ends_at_the_steerings_own_bound_with_
     assert world.wheel_log[-1] == 0.0                                  # the wheels stopped
 
 
-def test_with_no_opening_the_steering_stops_its_beyond_distance_past_the_goals_distance():
+def test_with_no_opening_the_steering_stops_at_the_goals_distance_and_never_clamps_at_a_corner():
+    """The goal's distance bounds the whole steering (a mission's map bound):
+    not a step of odometry past it, JunctionMissing, and nothing of the turn
+    proper ran (the table leaves the steering for the corner only when the
+    front is round)."""
     world = EdgeWorld()                                  # a straight pipe: nothing to stand at, nothing to turn into
     with pytest.raises(jn.JunctionMissing) as missing:
-        steer(world, distance=100.0)
-    last_mm = 100.0 + float(row()['steer_beyond_mm'])
-    assert last_mm < world.odometry <= last_mm + 25.0 * STEP_S          # long before the time bound would end it
+        steer(world, distance=100.0, steps=FROM_THE_START)
+    assert 100.0 <= world.odometry <= 100.0 + 25.0 * STEP_S           # long before the time bound would end it
     assert 'no opening toward the left within 100 mm' in str(missing.value)
     assert world.wheel_log[-1] == 0.0
+    assert [name for name, _ in world.ran] == ['unclamp front partial', 'level the front', 'steer front']
+
+
+def test_a_goal_of_distance_zero_steers_the_search_and_the_beyond_distance():
+    world = EdgeWorld()
+    with pytest.raises(jn.JunctionMissing):
+        steer(world, distance=0.0)
+    last_mm = float(BOOK.for_diameter(110).row('junction')['search_mm']) + float(row()['steer_beyond_mm'])
+    assert last_mm < world.odometry <= last_mm + 25.0 * STEP_S
+
+
+def test_a_rear_first_turn_steers_no_further_than_its_distance_either():
+    world = EdgeWorld()
+    with pytest.raises(jn.JunctionMissing):
+        steer(world, distance=-300.0, steps=(jn.table.state(jn.table.STEERING_LEAD, 'rear'),))
+    assert -300.0 - 25.0 * STEP_S <= world.odometry <= -300.0
 
 
 def test_a_back_off_that_cannot_move_ends_at_its_own_bound_and_the_steering_goes_on():

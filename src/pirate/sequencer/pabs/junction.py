@@ -440,18 +440,17 @@ class TakeJunction(Pab):
         inner bend says the leading part has turned into the new pipe
         (:meth:`_steer_until_round`). In a straight pipe the walls keep it far
         below ``steered_rad``: JunctionMissing once the odometry is
-        ``steer_beyond_mm`` past the goal's distance (the leading part turns
-        round the corner that far after it reaches the opening), or after the
-        steering's time bound."""
+        :func:`steer_reach_mm` from the start, or after the steering's time
+        bound."""
         row, prims, lead = motions.turn_row(ctx.guards, self.lead), ctx.prims, self.lead
         distance = abs(ctx.goal.distance) or float(ctx.guards.row('junction')['search_mm'])
         limit_s = (float(row['steer_base_s']) + float(row['steer_s_per_mm']) * distance) * motions.slower(ctx.goal, row)
         start = ctx.feed.latest()
         self.start_mm = start.odometry
         motions.torque(prims, **{lead.outer: int(row['steer_bend_i']), lead.inner: int(row['steer_bend_ii'])})
+        reach_mm = steer_reach_mm(ctx.goal, ctx.guards, row)
         try:
-            view = self._steer_until_round(ctx, row, start, start.stamp + limit_s,
-                                           distance + float(row['steer_beyond_mm']))
+            view = self._steer_until_round(ctx, row, start, start.stamp + limit_s, reach_mm)
         except TimedOut:
             view = None
         finally:
@@ -463,7 +462,7 @@ class TakeJunction(Pab):
             last = ctx.feed.latest()
             raise JunctionMissing('no opening toward the %s within %.0f mm (odometry %+.0f mm in %.0f s of steering; '
                                   'the %s did not turn%s)' % (
-                                      self.direction, distance, last.odometry - start.odometry,
+                                      self.direction, reach_mm, last.odometry - start.odometry,
                                       last.stamp - start.stamp, lead.part, motions.backed_off_text(self.backed_off)))
         self.steered = view
         self.junction_odometry = view.odometry - start.odometry
@@ -516,6 +515,18 @@ class TakeJunction(Pab):
 
     def _what(self):
         return '%s %s%s' % (self.kind, self.direction, ', rear first' if self.lead.part == 'rear' else '')
+
+
+def steer_reach_mm(goal, guards, row):
+    """How far (mm of odometry) a turn steers before its leading part must
+    be round the corner: the goal's distance, which bounds it as it bounds
+    the search straight on (a mission's map says how far the junction can
+    be); 0, the junction row's ``search_mm`` plus the turn row's
+    ``steer_beyond_mm`` (the leading part turns round that far after it
+    reaches the opening)."""
+    if goal.distance:
+        return abs(goal.distance)
+    return float(guards.row('junction')['search_mm']) + float(row['steer_beyond_mm'])
 
 
 def not_taken_why(kind, direction, rear_first=False):
