@@ -8,7 +8,9 @@ bench/mission_sweep runs the same over many start rolls with sensor noise.
   re-anchors the estimate where the front V met the T-joint;
 - a map that disagrees with the pipe (a T-joint sensed far from where the
   map has it; none where the map has one) stops the mission safe with the
-  reason;
+  reason; one 300 mm further on than the map says is searched for only as
+  far as the map and the localiser's tolerance allow, and the mission stops
+  before the robot reaches it;
 - a pause during the T-joint holds the robot safe; resume goes on from
   where the robot is;
 - a pause half round a bend: resume sends the turn again as it is and it
@@ -38,9 +40,10 @@ from pirate.testing.harness import SimHarness
 from pirate.supervisory import executive as ex
 from pirate.supervisory import planner
 from pirate.testing.harness_robot import HarnessRobot
-from pirate.supervisory.localiser import Localiser
+from pirate.supervisory.localiser import Localiser, searched_mm
 from pirate.supervisory.plan_cli import load_settings
 from pirate.testing.truth import middle, on_each_pab_state, on_pab_state, robot_along_m
+from pirate.testing.worlds import junction_moved
 from pirate.world import network
 from test_sequencer_sim import SAFE_INDICES
 
@@ -215,6 +218,45 @@ def test_a_map_that_disagrees_with_the_pipe_stops_the_mission_safe(world, first_
     if aborted:
         assert all(sent[i] == 0 for i in SAFE_INDICES.values()), sent     # the safe hold on the wire
     assert status_now == 'Idle Clamped'                                    # held in the pipe, not let go
+
+
+def test_a_t_joint_further_on_than_the_map_says_stops_the_mission_before_the_robot_reaches_it(tmp_path):
+    """inspection_tee_90's map, the pipe's T-joint 300 mm further on: the
+    junction PAB searches only to where the map has the T-joint plus the
+    localiser's uncertainty there (less than the plan's search_mm), finds
+    nothing there and the mission stops with the robot held clamped in the
+    safe hold, still looking (nothing crossed, nothing opened), short of the
+    real T-joint, the reason naming where it looked."""
+    pipe_map = network.load(network.world_path('inspection_tee_90'))
+    plan = planner.plan(pipe_map, ['launch_pit', 'target'], SETTINGS, MAX_DRIVE_MM, None, True)
+    tee = planner.junctions(pipe_map)[0]
+    with SimHarness(world=junction_moved('inspection_tee_90', 300, str(tmp_path)), orientation=UPRIGHT,
+                    seed=3) as h:
+        at_search, states = [], []
+        on_pab_state(h, TAKING, junction.SEARCHING, lambda: at_search.append(h.feed.latest().odometry))
+        on_each_pab_state(h, set(junction.MACHINE.states), lambda: states.append(h.server.pab_state))
+        robot, run = executive(plan, h, pipe_map.points['launch_pit'])
+        outcome = finished(run, *run_in_thread(run))
+        travelled_mm = h.feed.latest().odometry - at_search[0]
+        truth_m = robot_along_m(pipe_map, h.ground_truth())
+        sent = h.wires['setpoint'].sent[-1][1]
+        status_now = h.server.status()
+    search = run.search
+    bound_mm = searched_mm(search)
+    assert outcome.status == 'mismatch', outcome.log
+    assert [g.step.pab for g in robot.goals] == ['CLAMP_STRAIGHT', 'DRIVE', 'T_JOINT']      # nothing after it
+    assert robot.goals[-1].step.distance_mm == pytest.approx(bound_mm) and bound_mm < SETTINGS['search_mm']
+    assert search.to_m == pytest.approx(search.expected_m + search.uncertainty_m)         # the map + tolerance
+    assert travelled_mm <= bound_mm + 10.0, (travelled_mm, bound_mm)         # two Mega cycles at 50 mm/s
+    assert states[-1] == junction.SEARCHING, states                                      # it never went on
+    assert all(sent[i] == 0 for i in SAFE_INDICES.values()), sent                        # the safe hold on the wire
+    assert status_now == 'Idle Clamped'
+    # the pipe's T-joint (300 mm on) would have been sensed with the middle 100 mm before it
+    assert truth_m < tee.entry_m + 0.3 - 0.1, truth_m
+    assert re.search(r'tee_1 not found within %.0f mm: the map has it at 1200 mm \(the robot\'s middle at 1100 mm '
+                     r'when it senses it\); searched from %.0f to %.0f mm along the map, the estimate within %.0f mm'
+                     % (bound_mm, search.from_m * 1000, search.to_m * 1000, search.uncertainty_m * 1000),
+                     outcome.message), outcome.message
 
 
 @pytest.mark.parametrize('pause_in, resumed_pabs', [

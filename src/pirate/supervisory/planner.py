@@ -39,7 +39,8 @@ from pirate.world.network import turns_at_corner
 Junction = collections.namedtuple('Junction', 'name kind direction open_side entry_m exit_m diameter_mm from_run',
                                   defaults=(False,))
 #: One PAB goal of the plan. ``option``: None or LEFT/RIGHT/UP/DOWN/STRAIGHT;
-#: ``distance_mm`` signed (Drive: how far; junction PABs: how far to search);
+#: ``distance_mm`` signed (Drive: how far; junction PABs: how far at most to
+#: search, which the executive narrows to what the map allows);
 #: ``junction``: the :data:`Junction` a junction PAB should meet (else None);
 #: ``holds``: the clamp the robot holds when the step starts (None: none yet),
 #: which a retry or a resume re-establishes first.
