@@ -259,6 +259,45 @@ def test_a_t_joint_further_on_than_the_map_says_stops_the_mission_before_the_rob
                      outcome.message), outcome.message
 
 
+def test_a_bend_further_on_than_the_map_says_stops_the_steering_where_the_map_bounds_it(tmp_path):
+    """bend_left_90's map (a pit at the start, a target 500 mm past the bend),
+    the pipe's bend 300 mm further on: the turn steers only to where the map
+    has the bend plus the localiser's uncertainty there (its steering
+    allowance past the search is not added), its front not round any corner
+    there; the mission stops in the safe hold before the turn proper (no
+    clamp at a corner, the middle short of the real bend), the reason
+    naming where it looked."""
+    with open(network.world_path('bend_left_90')) as stream:
+        layout = yaml.safe_load(stream)
+    pipe_map = network.build(dict(layout, points=[{'name': 'pit', 'at_mm': layout['start']['at_mm']},
+                                                  {'name': 'target', 'at_mm': 800 + 90 + 500}]))
+    plan = planner.plan(pipe_map, ['pit', 'target'], SETTINGS, MAX_DRIVE_MM, None, True)
+    with SimHarness(world=junction_moved('bend_left_90', 300, str(tmp_path)), orientation=math.pi, seed=3) as h:
+        at_steering, states = [], []
+        on_pab_state(h, 'Taking Mitre bend', junction.STEERING_FRONT,
+                     lambda: at_steering.append(h.feed.latest().odometry))
+        on_each_pab_state(h, set(junction.MACHINE.states), lambda: states.append(h.server.pab_state))
+        robot, run = executive(plan, h, pipe_map.points['pit'])
+        outcome = finished(run, *run_in_thread(run))
+        travelled_mm, bend_ii = h.feed.latest().odometry - at_steering[0], h.feed.latest().angles['bend_ii']
+        steered_rad = float(h.server.book.for_diameter(90).row('turn')['steered_rad'])
+        truth, sent = h.ground_truth(), h.wires['setpoint'].sent[-1][1]
+    bound_mm = searched_mm(run.search)
+    assert outcome.status == 'mismatch', outcome.log
+    assert [g.step.pab for g in robot.goals] == ['CLAMP_SIDEWAYS', 'DRIVE', 'MITRE_BEND']    # nothing after it
+    assert robot.goals[-1].step.distance_mm == pytest.approx(bound_mm) and bound_mm < SETTINGS['search_mm']
+    assert travelled_mm <= bound_mm + 10.0, (travelled_mm, bound_mm)
+    assert states[-1] == junction.STEERING_FRONT and junction.CLAMPING_AT_CORNER not in states, states
+    assert bend_ii < steered_rad, bend_ii                                      # the front not round a corner
+    assert middle(truth)[0] < (800 + 300) / 1000.0, middle(truth)             # short of the real bend
+    assert all(sent[i] == 0 for i in SAFE_INDICES.values()), sent
+    assert re.search(r'mitre_1 not found within %.0f mm: the map has it at 800 mm .*searched from %.0f to %.0f mm '
+                     r'along the map, the estimate within %.0f mm' % (bound_mm, run.search.from_m * 1000,
+                                                                     run.search.to_m * 1000,
+                                                                     run.search.uncertainty_m * 1000),
+                     outcome.message), outcome.message
+
+
 @pytest.mark.parametrize('pause_in, resumed_pabs', [
     (junction.SEARCHING, ['T_JOINT', 'DRIVE', 'HOME']),
     (junction.CROSSING_FRONT, ['CLAMP_STRAIGHT', 'T_JOINT', 'DRIVE', 'HOME']),
