@@ -233,9 +233,9 @@ def test_no_opening_toward_the_turn_aborts_with_junction_missing():
         assert_ended(reason, outcome, 'aborted')
         assert outcome.junction_missing and math.isnan(outcome.junction_odometry)
         assert 'no opening toward the left within 100 mm' in outcome.message
-        # driven the goal's distance and the turn row's allowance for turning round, not on to the time bound
-        beyond_mm = float(GuardBook(*load_files()).for_diameter(90).row('turn')['steer_beyond_mm'])
-        assert h.feed.latest().odometry - start_mm <= 100.0 + beyond_mm + 50.0, h.feed.latest().odometry - start_mm
+        # the goal's distance bounds the whole steering (a mission's map bound), not the time bound; from
+        # the goal's start, lifting and opening the front first counted about 15 mm more
+        assert h.feed.latest().odometry - start_mm <= 100.0 + 25.0, h.feed.latest().odometry - start_mm
         sent = h.wires['setpoint'].sent[-1][1]
         assert all(sent[i] == 0 for i in SAFE_INDICES.values()), sent        # the safe hold
 
