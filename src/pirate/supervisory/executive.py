@@ -242,7 +242,7 @@ class Executive(object):
                 raise Stop('cancelled', 'step %d (%s) was cancelled outside the mission: %s'
                            % (self.step_index + 1, step.pab, report.message))
             if report.junction_missing:
-                raise Stop('mismatch', str(self.localiser.junction_missing(self.search)))
+                raise self._junction_missing()
             refused_at_start = report.status == 'rejected' and self._reclamp_may_help(step)
             if (report.status == 'rejected' and not refused_at_start) or not tries.spend(refused_at_start):
                 raise Stop('aborted', 'step %d (%s) %s: %s' % (self.step_index + 1, step.pab, report.status,
@@ -346,7 +346,7 @@ class Executive(object):
         if step.junction is None:
             return
         if report.junction_odometry_mm is None:
-            raise Stop('mismatch', str(self.localiser.junction_missing(self.search)))
+            raise self._junction_missing()
         try:
             mapped = self.localiser.junction_found(step.junction, report.junction_odometry_mm,
                                                    1 if step.distance_mm > 0 else -1)
@@ -393,8 +393,14 @@ class Executive(object):
         distance_mm = searched_mm(self.search)
         if distance_mm < self.settings['min_drive_mm']:
             self._not_running()
-            raise Stop('mismatch', str(self.localiser.junction_missing(self.search)))
+            raise self._junction_missing()
         return step._replace(distance_mm=sign * distance_mm)
+
+    def _junction_missing(self):
+        """The :class:`Stop` of a junction step whose junction was not where
+        the map has it: where it was looked for (the last :attr:`search`)."""
+        return Stop('mismatch', '%s; the robot is held where it is'
+                    % self.localiser.junction_missing(self.search))
 
     def _retries(self, step):
         default = self.policy.get('default', self.settings['policy'])

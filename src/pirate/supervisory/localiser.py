@@ -121,7 +121,7 @@ class Localiser(object):
         junction, sign = search.junction, search.sign
         return MapMismatch('%s not found within %.0f mm: the map has it at %.0f mm (the robot\'s middle at %.0f mm '
                            'when it senses it); searched from %.0f to %.0f mm along the map, the estimate within '
-                           '%.0f mm there; the robot is held where it stopped'
+                           '%.0f mm there'
                            % (junction.name, searched_mm(search), (junction.entry_m if sign > 0 else junction.exit_m)
                               * 1000, search.expected_m * 1000, search.from_m * 1000, search.to_m * 1000,
                               search.uncertainty_m * 1000))
