@@ -80,6 +80,17 @@ def command_writers(rogues, owner):
     return Report(OK, 'only %s writes the command topics' % owner, values)
 
 
+def goal_owner(owner, lost):
+    """The node that sent the running goal (pinged while it runs), and why the
+    last goal's owner was lost (None: it was not), until the next goal."""
+    values = [('owner', owner or '-')]
+    if lost:
+        return Report(ERROR, lost, values)
+    if owner:
+        return Report(OK, 'the running goal\'s owner %s answers' % owner, values)
+    return Report(OK, 'no goal from another node running', values)
+
+
 def small_states(stale, reason, age_s, boards, loss=None):
     """The Small State stream as the state node sees it: every board fresh,
     or stale with the reason (the silent boards named). ``loss``: board ->

@@ -25,6 +25,7 @@ from actionlib_msgs.msg import GoalStatus
 
 from pirate.robot.writers import OneWriter
 from pirate.manager import manager_node
+from pirate.manager.goal_owner_ros import OwnerMonitor
 from pirate.testing.harness import SimHarness
 
 CANCELS = 1000
@@ -135,6 +136,7 @@ def manager(monkeypatch):
         mgr.server, mgr.feed = sim.server, sim.feed
         mgr._pending, mgr._queue, mgr._current = threading.Condition(), [], None
         mgr._writers = OneWriter('/pirate_manager')
+        mgr._owners = OwnerMonitor('/pirate_manager', mgr._owner_gone)     # these handles name no owner
         sim.server._feedback = mgr._publish_feedback      # wired as in PirateManager.__init__
         worker = threading.Thread(target=mgr._worker, daemon=True)
         worker.start()

@@ -56,6 +56,7 @@ ROS_MODULES = (
     'pirate.inspection.inspection_node',
     'pirate.inspection.job_node',
     'pirate.manager.action_server_ros',
+    'pirate.manager.goal_owner_ros',
     'pirate.manager.manager_node',
     'pirate.panel.mapper_ros',
     'pirate.panel.midi_node',

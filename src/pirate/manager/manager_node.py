@@ -41,6 +41,7 @@ from pirate.msg import (ControlArray, LimitArray, PirateAction, PirateFeedback, 
 from pirate.cfg import SequencerConfig
 from pirate.sequencer import tuning
 from pirate.manager.action_server_ros import QuietActionServer
+from pirate.manager.goal_owner_ros import OwnerMonitor
 from pirate.manager.robot_link import RobotLink
 from pirate.sequencer.primitives import MotionPrimitives
 from pirate.sequencer.server import ABORTED, PREEMPTED, SUCCEEDED, Feedback, PirateServer
@@ -159,6 +160,7 @@ class PirateManager(object):
         rospy.Subscriber(names.SMALL_STATE_TOPIC, SmallState, self._on_small_state, queue_size=50)
         rospy.Subscriber(names.DEVICE_ANNOUNCED_TOPIC, Empty, lambda _msg: self._link.announced(), queue_size=10)
         self._writers = OneWriter(rospy.get_name())
+        self._owners = OwnerMonitor(rospy.get_name(), self._owner_gone)
         self._panel_client = None       # the panel's PabClient, when this manager has a panel
         self._diagnostics = self._diagnose()
         for topic, kind in ((names.SETPOINT_TOPIC, SetpointArray), (names.CONTROL_TOPIC, ControlArray),
@@ -170,6 +172,7 @@ class PirateManager(object):
         self.panel = self._compose_panel()
         self._reconfigure = self._tunables()
         threading.Thread(target=self._worker, name='pab_worker', daemon=True).start()
+        threading.Thread(target=self._owners.run, args=(rospy.is_shutdown,), name='goal_owner', daemon=True).start()
         self._action.start()
         if self._panel_client is not None:
             threading.Thread(target=self._panel_client.connect, name='panel_connect', daemon=True).start()
@@ -200,6 +203,8 @@ class PirateManager(object):
             self.feed.since_last_state(), self.feed.feedback_timeout)))
         updater.add('command writers', lambda stat: health.fill(stat, health.command_writers(
             self._writers.rogues(time.monotonic()), self._writers.owner)))
+        updater.add('goal owner', lambda stat: health.fill(stat, health.goal_owner(
+            self._owners.owner, self._owners.lost)))
         updater.add('panel goals', lambda stat: health.fill(stat, health.panel_goals(
             None if self._panel_client is None else self._panel_client.connected.is_set())))
         rospy.Timer(rospy.Duration(1.0), lambda _event: updater.update())
@@ -294,6 +299,7 @@ class PirateManager(object):
             if not reason:
                 handle.set_accepted('accepted')
                 self._current = handle
+                self._owners.watch(handle)
                 self._queue.append(handle)
                 self._pending.notify()
         if reason:
@@ -330,9 +336,21 @@ class PirateManager(object):
             else:
                 assert outcome.status == ABORTED
                 handle.set_aborted(result, outcome.message)
+            self._owners.release(handle)
             with self._pending:
                 if self._current is handle:
                     self._current = None     # only now: the handle is terminal
+
+    def _owner_gone(self, handle, reason):
+        """The node that sent the running goal is gone (pirate.manager.goal_owner):
+        cancel it into the safe hold and say so now."""
+        with self._pending:
+            if self._current is not handle:
+                return
+            self.server.cancel(reason)
+        rospy.logerr('pirate_manager: %s', reason)
+        self.prims.safe_hold()
+        self._diagnostics.force_update()     # the ERROR on /diagnostics now, not at the next 1 Hz
 
     def _result(self, outcome):
         """The result: success, message, the trace of primitives, the state after,
