@@ -21,6 +21,7 @@ from pirate.manager.goal_owner_ros import OwnerMonitor, owner_of, ping_node
 from pirate.robot.writers import OneWriter
 from pirate.testing.harness import SimHarness
 
+from test_faults import assert_hold_on_wire
 from test_sequencer_sim import CLAMP_STRAIGHT, DRIVE, run_bounded
 
 OWNER = '/mission_executive'
@@ -293,6 +294,7 @@ def test_a_drive_whose_owner_dies_is_cancelled_into_the_hold(manager):
     assert OWNER in handle.text and 'drive-1' in handle.text, handle.text
     assert errors and OWNER in errors[0] and mgr._diagnostics.forced == 1
     assert mgr._owners.lost and OWNER in mgr._owners.lost
+    assert_hold_on_wire(sim)
     sim.pace = None
     sim.run_for(1.0)                # coast to a stop
     stopped_mm = sim.travel_mm()

@@ -46,7 +46,7 @@ def lookup_node(own_name, node):
     master.handle = xmlrpc.client.ServerProxy(master.master_uri, transport=_Timed(LOOKUP_TIMEOUT_S))
     try:
         return master.lookupNode(node)
-    except (rosgraph.MasterException, OSError, xmlrpc.client.Error):
+    except Exception:  # pylint: disable=broad-except; not named (unknown, the master silent): pinged as unknown
         return None
 
 

@@ -9,7 +9,9 @@ Why ``actionlib.ActionServer`` and not SimpleActionServer: a
 SimpleActionServer accepts a new goal by preempting the running one; the
 report (4.6) wants a goal sent while one runs refused, not queued nor
 preempting. The server is created with ``auto_start=False`` and started
-when everything is wired.
+when everything is wired. The node that sent the running goal is pinged
+while it runs; a goal whose owner is gone is cancelled into the safe hold
+(:mod:`pirate.manager.goal_owner`).
 
 Params (private): ``~guards`` ({mm: table}, config/guards_*.yaml),
 ``~sequencer`` (config/sequencer.yaml), ``~panel`` (bool, compose the
