@@ -1,6 +1,6 @@
 """An inspection job: a route there and back and the findings to mark on it (pure).
 
-A job file (config/missions/inspection_demo.yaml) names the pipe map, the
+A job file (config/jobs/inspection_demo.yaml) names the pipe map, the
 route's points (visited in order, the first and the last the launch pit)
 and the marks: each a kind (:data:`pirate.inspection.findings.KINDS`), the
 operator's note, and where it is marked: when the mission's estimate of

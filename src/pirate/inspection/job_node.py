@@ -10,7 +10,7 @@ pirate.inspection.job), and at
 the end writes the run's inspection report (pirate.inspection.report) and
 prints its path. Needs the stack with the mission executive and the
 inspection node (``roslaunch pirate demo.launch inspection:=true``; make
-demo). Default job: config/missions/inspection_demo.yaml. Exit 0 when the
+demo). Default job: config/jobs/inspection_demo.yaml. Exit 0 when the
 mission succeeded, every mark was recorded and the report written.
 """
 import argparse
@@ -28,7 +28,7 @@ from pirate.msg import MissionActionFeedback
 from pirate.srv import InspectionMark
 from pirate.supervisory import route_client_ros
 
-DEFAULT_JOB = os.path.join(paths.CONFIG_DIR, 'missions', 'inspection_demo.yaml')
+DEFAULT_JOB = os.path.join(paths.CONFIG_DIR, 'jobs', 'inspection_demo.yaml')
 MARK_SERVICE_WAIT_S = 30.0
 
 
