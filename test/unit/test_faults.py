@@ -21,6 +21,7 @@ from pirate.sequencer.guards import BadConfig, GuardBook, load_files
 from pirate.sequencer.pabs.base import PabFailed
 from pirate.sequencer.pabs.drive import Drive
 from pirate.sequencer.pabs.wheels import Progress as DriveProgress
+from pirate.testing.bus_faults import JITTER_S, LOSS, LossyBus
 from pirate.testing.harness import SimHarness
 from pirate.state.assembler import BadState, StateAssembler
 from pirate.state.feed import RobotFeed, RobotView, TimedOut
@@ -361,8 +362,6 @@ def test_a_silent_camera_board_stops_no_pab():
 #: A Clamp Straight from upright lasts about 11 robot s in the twin; the lossy
 #: stream runs well beyond one.
 CLAMP_STRAIGHT_ROBOT_S = 30.0
-#: What the campaign injected: 10 % of Small States dropped, each delayed 0-80 ms.
-LOSS, JITTER_S = 0.1, 0.08
 
 
 def _lossy_stream(seed, cycles, loss=LOSS, jitter=JITTER_S, silent_from=None):
@@ -433,7 +432,7 @@ def test_a_board_going_silent_on_a_lossy_bus_is_still_noticed():
 def test_a_clamp_straight_succeeds_with_ten_percent_loss_and_jitter():
     """In the twin every goal aborted "board N silent" under 10 % loss."""
     with SimHarness() as h:
-        h.assembler.update = _LossyBus(h.assembler.update, random.Random(3))
+        h.assembler.update = LossyBus(h.assembler.update, random.Random(3))
         lost = []
         lose = h.feed.lose
         h.feed.lose = lambda reason: (lost.append(reason), lose(reason))
@@ -443,29 +442,6 @@ def test_a_clamp_straight_succeeds_with_ten_percent_loss_and_jitter():
         assert lost == []
         assert h.robot_time - start <= CLAMP_STRAIGHT_ROBOT_S / 2
         assert 0.03 <= max(h.assembler.loss().values()) <= 0.3
-
-
-class _LossyBus(object):
-    """Between the harness and its assembler: each reply of a cycle checked
-    at ``now`` was sent 50 ms before, is lost with :data:`LOSS` or arrives
-    0-80 ms after it was sent; one arriving after the check waits for the
-    next cycle's (as the state node's checks fall between arrivals)."""
-
-    def __init__(self, update, rng):
-        self.update, self.rng = update, rng
-        self.late = []
-
-    def __call__(self, board, data, now):
-        for arrival, late_board, late_data in [m for m in self.late if m[0] <= now]:
-            self.update(late_board, late_data, arrival)
-        self.late = [m for m in self.late if m[0] > now]
-        if self.rng.random() < LOSS:
-            return False
-        arrival = now - 0.05 + self.rng.uniform(0.0, JITTER_S)
-        if arrival > now:
-            self.late.append((arrival, board, data))
-            return False
-        return self.update(board, data, arrival)
 
 
 @pytest.mark.parametrize('distance', [0.0, -1e-9, 0.08, -0.08])
