@@ -75,6 +75,12 @@ Progress = collections.namedtuple('Progress', 'step steps pab option distance_mm
 WAIT_RESUME, WAIT_CONFIRM = 'resume', 'confirmation'
 #: How the mission ended: succeeded / aborted / cancelled / mismatch / manual.
 Outcome = collections.namedtuple('Outcome', 'status message log')
+#: Where a mission taken up from its log goes on: ``step`` (0-based) runs
+#: first; ``interrupted``: it had started when the executive died, so it
+#: runs as after a pause (re-clamped if the robot is no longer clamped, a
+#: Drive only for what is left); ``turn_begun``: a turn that may have
+#: sensed its junction, re-sent as it is (pirate.supervisory.resume).
+Entry = collections.namedtuple('Entry', 'step interrupted turn_begun')
 
 
 def between_missions(text, next_level):
@@ -120,7 +126,7 @@ class Executive(object):
     """Runs one plan; one instance per mission."""
 
     def __init__(self, route_plan, robot, localiser, settings, policy=None, level=FULL,
-                 progress=None, out=print, journal=None, name='mission'):
+                 progress=None, out=print, journal=None, name='mission', goal=None, entry=None):
         if level not in LEVELS:
             raise ValueError('autonomy level %r is not one of %s' % (level, ', '.join(LEVELS)))
         self.plan, self.robot, self.localiser = route_plan, robot, localiser
@@ -129,6 +135,8 @@ class Executive(object):
         self._progress, self._out = progress or (lambda p: None), out
         #: ``journal(record)``: every event as it happens (pirate.supervisory.mission_log)
         self._journal, self.name = journal or (lambda record: None), name
+        #: what the mission was asked (map, points, ...: the log's start record), and where it starts
+        self.goal, self.entry = goal, entry or Entry(0, False, False)
         self._cond = threading.Condition()
         self._paused = self._cancelled = self._running = False
         self._confirmed = -1
@@ -202,21 +210,37 @@ class Executive(object):
     def run(self):
         """Run the plan to its :data:`Outcome`."""
         steps = self.plan.steps
-        self._journal({'event': 'start', 'mission': self.name, 'steps': len(steps), 'level': self.level})
+        self.step_index = self.entry.step
+        self._journal({'event': 'start', 'mission': self.name, 'steps': len(steps), 'level': self.level,
+                       'goal': self.goal, 'first_step': self.step_index + 1, 'localiser': self.localiser.state()})
         if self.level == MANUAL:
             self._say('manual: the plan is shown, nothing runs')
             return self._end('manual', 'plan shown; nothing run (level manual)')
         try:
             while self.step_index < len(steps):
-                self._run_step(steps[self.step_index])
+                self._step(steps[self.step_index])
                 self.step_index += 1
         except Stop as stop:
             return self._end(stop.status, str(stop))
         return self._end('succeeded', '%d PABs, at %.0f mm' % (len(steps), self.localiser.along_m * 1000))
 
-    def _run_step(self, step):
+    def _step(self, step):
+        """Run ``step`` between its records in the log: started (with the
+        estimate then) and succeeded (with the estimate after)."""
+        number, entry = self.step_index + 1, self.entry
+        self._journal({'event': 'step', 'step': number, 'pab': step.pab, 'option': step.option,
+                       'localiser': self.localiser.state()})
+        if entry.interrupted and entry.step == self.step_index:
+            self._run_step(step, True, entry.turn_begun)
+        else:
+            self._run_step(step)
+        self._journal({'event': 'step_end', 'step': number, 'pab': step.pab, 'status': 'succeeded',
+                       'localiser': self.localiser.state()})
+
+    def _run_step(self, step, resuming=False, turn_begun=False):
+        """``resuming``: the step had begun (paused, or its executive died),
+        ``turn_begun``: a turn re-sent as it is."""
         tries = Tries(self._retries(step))
-        resuming = turn_begun = False
         while True:
             self._await_go(step)
             if resuming and not turn_begun and step.holds is not None and not self.robot.clamped():

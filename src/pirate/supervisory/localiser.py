@@ -38,7 +38,7 @@ class Localiser(object):
 
     def __init__(self, start_m, settings):
         self.anchor_m, self.anchor_odometry = start_m, None
-        self.along_m = start_m
+        self.along_m, self.odometry_mm = start_m, None
         self.fixes = []
         self._robot = settings['robot']
         self._tolerance_m = settings['locate_tolerance_mm'] / 1000.0
@@ -48,8 +48,17 @@ class Localiser(object):
         """A new odometry reading: the estimate follows it from the anchor."""
         if self.anchor_odometry is None:
             self.anchor_odometry = odometry_mm
-        self.along_m = self.estimate(odometry_mm)
+        self.along_m, self.odometry_mm = self.estimate(odometry_mm), odometry_mm
         return self.along_m
+
+    def state(self):
+        """What restores this localiser (:func:`restored`), as plain data in
+        mm: the estimate, its uncertainty, the last anchor (where on the map
+        and the odometry there) and the odometry of the estimate (None
+        before the first reading)."""
+        return {'along_mm': round(self.along_m * 1000.0, 1), 'anchor_mm': round(self.anchor_m * 1000.0, 1),
+                'anchor_odometry_mm': self.anchor_odometry, 'odometry_mm': self.odometry_mm,
+                'uncertainty_mm': round(self._uncertainty_at(self.along_m) * 1000.0, 1)}
 
     def estimate(self, odometry_mm):
         """Where ``odometry_mm`` puts the robot (m along), changing nothing:
@@ -113,7 +122,7 @@ class Localiser(object):
         turn's steps leave it, set by the robot's geometry). Re-anchor there:
         round the corner the wheels slip while the middle swings, clamped,
         and the odometry over-counts (about 250 mm per turn in the twin)."""
-        self.anchor_m, self.anchor_odometry, self.along_m = end_m, odometry_mm, end_m
+        self.anchor_m, self.anchor_odometry, self.along_m, self.odometry_mm = end_m, odometry_mm, end_m, odometry_mm
 
     @staticmethod
     def junction_missing(search):
@@ -125,6 +134,19 @@ class Localiser(object):
                            % (junction.name, searched_mm(search), (junction.entry_m if sign > 0 else junction.exit_m)
                               * 1000, search.expected_m * 1000, search.from_m * 1000, search.to_m * 1000,
                               search.uncertainty_m * 1000))
+
+
+def restored(state, settings):
+    """A :class:`Localiser` from its :meth:`Localiser.state`: anchored where
+    it was, so a later odometry reading moves the estimate on from there and
+    the uncertainty grows with the distance since the anchor. KeyError,
+    TypeError or ValueError when ``state`` is not one."""
+    localiser = Localiser(float(state['anchor_mm']) / 1000.0, settings)
+    odometry_mm, anchor_odometry = state['odometry_mm'], state['anchor_odometry_mm']
+    if anchor_odometry is not None:
+        localiser.anchor_odometry = float(anchor_odometry)
+        localiser.update(float(odometry_mm))
+    return localiser
 
 
 def searched_mm(search):
