@@ -22,7 +22,11 @@ The executive's log is written as it goes (pirate.supervisory.mission_log,
 ``~log``, default ``$ROS_HOME/pirate/mission_log.jsonl``): at start-up the
 node says how the last mission in it ended, or where it stood if the
 executive died mid-mission; between missions the command ``last`` says it
-again.
+again. A mission the executive died in is taken up from the log
+(pirate.supervisory.resume) by a goal with ``resume`` set, which the command
+``resume`` between missions sends (the panel's resume button): it runs as
+any mission, its feedback and result on ``/pirate/mission``, from the first
+step not known to have succeeded; a refusal says why.
 
 Params (private): ``~goal_timeout`` (s of robot time one PAB may take
 before the executive cancels it, default 600); ``~log`` (the log's path).
@@ -40,12 +44,14 @@ from std_msgs.msg import Float64
 from visualization_msgs.msg import Marker, MarkerArray
 
 from pirate import names
-from pirate.msg import MissionAction, MissionFeedback, MissionResult, PirateAction, PirateGoal, RobotState
+from pirate.msg import (MissionAction, MissionFeedback, MissionGoal, MissionResult, PirateAction, PirateGoal,
+                        RobotState)
 from pirate.sequencer import goals
 from pirate.sequencer.clamp_state import IDLE_CLAMPED
 from pirate.srv import MissionCommand, MissionCommandResponse, ServerStatus
 from pirate.supervisory import executive as ex
 from pirate.supervisory import mission_log, planner
+from pirate.supervisory.resume import CannotResume, take_up
 from pirate.supervisory.goal_client_ros import GoalClient
 from pirate.supervisory.localiser import Localiser
 from pirate.supervisory.plan_cli import load_settings
@@ -53,6 +59,7 @@ from pirate.world import network
 from pirate.world.pose import path_points, pose_along
 
 POSE_PERIOD_S = 0.2
+SERVER_WAIT_S = 2.0                     # wall s the command ``resume`` waits for the node's own action server
 ROUTE_RGBA = (0.1, 0.8, 0.2, 0.9)        # the planned route, green
 LINE_WIDTH_M = 0.008
 
@@ -130,18 +137,15 @@ class MissionExecutiveNode(object):
         rospy.Service(names.MISSION_COMMAND_SERVICE, MissionCommand, self._on_command)
         rospy.Timer(rospy.Duration(POSE_PERIOD_S), self._publish_pose)
         self._server.start()
+        self._own = actionlib.ActionClient(names.MISSION_ACTION, MissionAction)   # sends the resume goal
+        self._resume_goal = None        # its client handle, kept while it runs
         rospy.loginfo('mission_executive ready on %s', names.MISSION_ACTION)
 
     # --- goals --------------------------------------------------------------
     def _on_goal(self, handle):
         goal = handle.get_goal()
-        level = goal.level or self._next_level
         try:
-            pipe_map, route_plan, policy = self._prepare(goal, level)
-            run = ex.Executive(route_plan, self.robot, Localiser(pipe_map.points[goal.points[0]], self.settings),
-                               self.settings, policy=policy, level=level,
-                               progress=lambda p: self._feedback(handle, p), out=rospy.loginfo,
-                               journal=self._journal, name='%s: %s' % (goal.map, ' -> '.join(goal.points)))
+            run, pipe_map, accepted = (self._resumed if goal.resume else self._planned)(handle, goal)
         except (network.WorldError, planner.PlanError, ValueError, yaml.YAMLError) as refused:
             self._refuse(handle, str(refused))
             return
@@ -150,9 +154,42 @@ class MissionExecutiveNode(object):
                 self._refuse(handle, 'a mission is running; cancel it first')
                 return
             self._running = (handle, run, pipe_map)
-        handle.set_accepted('planned: %d PABs' % len(route_plan.steps))
-        self._markers_pub.publish(route_markers(pipe_map, goal.points))
+        handle.set_accepted(accepted)
+        rospy.loginfo('mission_executive: %s', accepted)
+        self._markers_pub.publish(route_markers(pipe_map, run.goal['points']))
         threading.Thread(target=self._run, args=(handle, run), name='mission', daemon=True).start()
+
+    def _planned(self, handle, goal):
+        """(executive, map, what acceptance says) of a goal naming its route."""
+        level = goal.level or self._next_level
+        pipe_map, route_plan, policy = self._prepare(goal, level)
+        run = self._executive(handle, route_plan, Localiser(pipe_map.points[goal.points[0]], self.settings),
+                              policy, dict(goal_record(goal), level=level), None)
+        return run, pipe_map, 'planned: %d PABs' % len(route_plan.steps)
+
+    def _resumed(self, handle, goal):
+        """(executive, map, what acceptance says) of a ``resume`` goal: the
+        log's interrupted mission; CannotResume (a ValueError) says why not."""
+        if goal.map or goal.points:
+            raise ValueError('a resume goal takes the map and points of the log; it names none')
+        resume, pipe_map, policy = self._take_up()
+        run = self._executive(handle, resume.plan, resume.localiser, policy, resume.goal, resume.entry)
+        return run, pipe_map, resume.message
+
+    def _take_up(self):
+        """(Resume, map, policy) of the log's interrupted mission, from the robot's odometry now."""
+        prepared = {}
+
+        def plan_of(goal):
+            prepared['map'], route_plan, prepared['policy'] = self._prepare(MissionGoal(**goal), goal['level'])
+            return route_plan
+        resume = take_up(mission_log.read(self._log_path), plan_of, self.settings, self.robot.odometry_mm)
+        return resume, prepared['map'], prepared['policy']
+
+    def _executive(self, handle, route_plan, localiser, policy, goal, entry):
+        return ex.Executive(route_plan, self.robot, localiser, self.settings, policy=policy, level=goal['level'],
+                            progress=lambda p: self._feedback(handle, p), out=rospy.loginfo, journal=self._journal,
+                            name='%s: %s' % (goal['map'], ' -> '.join(goal['points'])), goal=goal, entry=entry)
 
     def _prepare(self, goal, level):
         """Map, plan and policy of a goal; raises with the reason it cannot run."""
@@ -215,13 +252,29 @@ class MissionExecutiveNode(object):
     def _on_command(self, req):
         with self._lock:
             running = self._running
-        if running is None and req.command.strip().lower() == 'last':
+        word = req.command.strip().lower()
+        if running is None and word == 'last':
             ok, message = True, self._last_mission()
+        elif running is None and word == 'resume':
+            ok, message = self._send_resume()
         elif running is None:
             ok, message, self._next_level = ex.between_missions(req.command, self._next_level)
         else:
             ok, message = running[1].command(req.command)
         return MissionCommandResponse(ok=ok, message=message)
+
+    def _send_resume(self):
+        """The command ``resume`` between missions: (ok, message). The log's
+        mission is checked now, for the operator's answer, then sent to this
+        node's action server as a ``resume`` goal, so it runs as any mission."""
+        try:
+            resume = self._take_up()[0]
+        except (CannotResume, network.WorldError, planner.PlanError, ValueError, yaml.YAMLError) as refused:
+            return False, 'cannot resume: %s' % refused
+        if not self._own.wait_for_server(rospy.Duration(SERVER_WAIT_S)):
+            return False, 'cannot resume: the mission action server did not answer'
+        self._resume_goal = self._own.send_goal(MissionGoal(resume=True))
+        return True, resume.message
 
     # --- where the robot is -------------------------------------------------
     def _publish_pose(self, _event):
@@ -240,6 +293,12 @@ class MissionExecutiveNode(object):
         self._pose_pub.publish(pose)
         self._uncertainty_pub.publish(Float64(data=running[1].localiser.uncertainty_m(odometry_mm) * 1000.0))
         self._along_pub.publish(Float64(data=along_m * 1000.0))
+
+
+def goal_record(goal):
+    """What the log keeps of a MissionGoal, to take its mission up again."""
+    return {'map': goal.map, 'points': list(goal.points), 'speed': goal.speed, 'no_home': goal.no_home,
+            'level': goal.level, 'policy': goal.policy}
 
 
 def _marker(kind, ns, index, rgba, scale, position=(0.0, 0.0, 0.0)):
