@@ -52,7 +52,7 @@ from pirate.srv import MissionCommand, MissionCommandResponse, ServerStatus
 from pirate.supervisory import executive as ex
 from pirate.supervisory import mission_log, planner
 from pirate.supervisory.resume import CannotResume, take_up
-from pirate.supervisory.goal_client_ros import GoalClient
+from pirate.supervisory.goal_client_ros import GoalClient, wait_for_server
 from pirate.supervisory.localiser import Localiser
 from pirate.supervisory.plan_cli import load_settings
 from pirate.world import network
@@ -271,7 +271,7 @@ class MissionExecutiveNode(object):
             resume = self._take_up()[0]
         except (CannotResume, network.WorldError, planner.PlanError, ValueError, yaml.YAMLError) as refused:
             return False, 'cannot resume: %s' % refused
-        if not self._own.wait_for_server(rospy.Duration(SERVER_WAIT_S)):
+        if not wait_for_server(self._own, SERVER_WAIT_S):
             return False, 'cannot resume: the mission action server did not answer'
         self._resume_goal = self._own.send_goal(MissionGoal(resume=True))
         return True, resume.message
