@@ -32,6 +32,11 @@ What a gas-network inspector expects of it:
   the rear came round, by the Pirate Server's record of the turn (half round
   the corner a Clamp Sideways would undo the turn); if the PAB refuses, the
   retry's re-clamp follows. Cancel always ends the mission.
+- **the log**: a ``journal`` is told every event as it happens, each
+  step's start and success with the localiser's state, so a mission whose
+  executive died can be taken up from it (pirate.supervisory.resume): a new
+  executive starts at its :data:`Entry`, the step that was running run as
+  after a pause.
 
 Pure: the robot is an object with ``run(step) -> Report`` (blocking until
 the goal ends), ``cancel()`` (any thread) and ``clamped()`` (the server's

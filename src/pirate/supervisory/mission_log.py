@@ -4,10 +4,16 @@ One JSON object per line (JSON Lines), appended and flushed per event, so
 an executive killed mid-mission (SIGKILL, a crash, a laptop that lost
 power a moment after) leaves everything it had said; a restarted one reads
 how the last mission ended, or where it stood when the executive died.
-Records: ``{"event": "start", "mission": ..., "steps": n}``, ``{"event":
-"say", "step": k, "text": ...}`` (every line the executive says, k from
-1), ``{"event": "end", "status": ..., "message": ...}``; each with ``"t"``,
-the wall time (s since the epoch). Pure file I/O: no ROS.
+Records: ``{"event": "start", "mission": ..., "steps": n, "goal": {map,
+points, speed, no_home, level, policy}, "first_step": k, "localiser":
+{...}}``, ``{"event": "step", "step": k, "pab": ..., "localiser": {...}}``
+when step k starts and ``{"event": "step_end", ..., "status":
+"succeeded"}`` when it succeeds (the localiser's state then:
+pirate.supervisory.localiser ``state``), ``{"event": "say", "step": k,
+"text": ...}`` (every line the executive says, k from 1), ``{"event":
+"end", "status": ..., "message": ...}``; each with ``"t"``, the wall time
+(s since the epoch). pirate.supervisory.resume takes an interrupted
+mission up from them. Pure file I/O: no ROS.
 """
 import collections
 import json
