@@ -90,8 +90,9 @@ Entry = collections.namedtuple('Entry', 'step interrupted turn_begun')
 
 def between_missions(text, next_level):
     """The operator's word when no mission runs: (ok, message, the level of
-    the next mission whose goal names none). Only ``level X`` means
-    something then; the panel's level buttons work before a mission."""
+    the next mission whose goal names none). Here only ``level X`` means
+    something (the panel's level buttons work before a mission); the ROS
+    edge answers ``last`` and ``resume`` from the log itself."""
     words = text.strip().lower().split()
     if len(words) == 2 and words[0] == 'level' and words[1] in LEVELS:
         return True, 'autonomy level %s for the next mission' % words[1], words[1]

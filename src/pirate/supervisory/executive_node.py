@@ -214,7 +214,9 @@ class MissionExecutiveNode(object):
                 rospy.logwarn('mission_executive: cannot write the log %s: %s', self._log_path, failed)
 
     def _last_mission(self):
-        return mission_log.describe(mission_log.last_ending(mission_log.read(self._log_path)))
+        ending = mission_log.last_ending(mission_log.read(self._log_path))
+        hint = '; the command resume takes it up' if ending is not None and ending.status == 'interrupted' else ''
+        return mission_log.describe(ending) + hint
 
     @staticmethod
     def _refuse(handle, reason):

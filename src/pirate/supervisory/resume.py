@@ -150,7 +150,7 @@ def _may_have_sensed(found, step, robot, moved_mm):
 def _told(found, step, entry, localiser, moved_mm):
     """What the operator is told when the mission is taken up."""
     how = ('re-sent as it is: the turn may have begun' if entry.turn_begun else
-           'run again from where the robot is' if entry.interrupted else 'next')
+           'run again from where the robot is' if entry.interrupted else 'not begun yet')
     return ('resuming mission %s from its log at step %d of %d (%s%s), %s; estimate %.0f mm along the map, within '
             '%.0f mm (the odometry moved %.0f mm since the log\'s last estimate)'
             % (found.mission, entry.step + 1, found.steps, step.pab, ' %s' % step.option if step.option else '',
