@@ -169,3 +169,17 @@ def test_the_log_says_where_the_mission_stood_step_by_step():
     done = began + [{'event': 'step_end', 'step': 1, 'pab': 'CLAMP_SIDEWAYS', 'status': 'succeeded',
                      'localiser': dict(state, along_mm=301.0)}]
     assert interrupted(done)[3:6] == (1, False, dict(state, along_mm=301.0))
+
+
+@pytest.mark.parametrize('moved_mm, turn_begun', [(10.0, False), (400.0, True)])
+def test_a_turn_is_re_sent_as_it_is_only_once_it_may_have_sensed_its_junction(moved_mm, turn_begun):
+    """The turn's step began 500 mm before where it senses the bend, within
+    150 mm: moved 10 mm it cannot have; moved 400 mm it may have."""
+    bend = planner.plan(MAP, ['pit', 'target'], SETTINGS, 5000.0).steps[2]
+    sensed_mm = sensed_at_m(bend.junction, 1, SETTINGS['robot']) * 1000.0
+    state = {'along_mm': sensed_mm - 500.0, 'anchor_mm': sensed_mm - 500.0, 'anchor_odometry_mm': 0.0,
+             'odometry_mm': 0.0, 'uncertainty_mm': 150.0}
+    began = _log({'event': 'step', 'step': 3, 'pab': 'MITRE_BEND', 'option': 'LEFT', 'localiser': state})
+    resume = take_up(began, plan_on(MAP), SETTINGS, moved_mm)
+    assert resume.entry == ex.Entry(2, True, turn_begun)
+    assert resume.localiser.along_m * 1000.0 == pytest.approx(sensed_mm - 500.0 + moved_mm)
