@@ -461,3 +461,19 @@ def test_a_board_whose_latest_reply_is_missing_is_named_before_it_is_silent():
               if 9.9 <= at <= 10.4 and snap.missed + snap.silent]
     assert missed[0][:2] == (10.1, (22,)), missed      # the cycle its reply was due in (last at 9.9)
     assert all(22 in m + s for _, m, s in missed) and missed[-1][2] == (22,)
+
+
+def test_board_28_silent_still_folds_the_odometry():
+    """The end of a cycle (board 28) never heard: the wheels' increments are
+    folded at a drive board's reply once the fold is overdue."""
+    assembler = StateAssembler()
+    for cycle in range(20):
+        for board in tables.BOARDS[:-1]:
+            data = [0] * tables.SMALL_STATE_SIZE
+            data[tables.SS_ODOMETRY] = 100 * cycle
+            if board == tables.IMU_BOARD:
+                y, z = units.roll_to_gravity(math.pi / 2)
+                data[tables.SS_IMU_Y], data[tables.SS_IMU_Z] = int(y), int(z)
+            assembler.update(board, data, cycle * 0.1 + board * 0.001)
+    odometry_mm = assembler.snapshot(2.0).odometry
+    assert 16 * 100 * 0.083 <= odometry_mm <= 19 * 100 * 0.083, odometry_mm

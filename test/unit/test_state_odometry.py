@@ -113,3 +113,21 @@ def test_a_part_votes_only_with_the_boards_that_reported():
     cycles(odometry, steps)
     assert odometry.part_mm('rear') == pytest.approx((300 + 100) / 2 * 3 * MM_PER_COUNT)
     assert odometry.part_mm('front') == pytest.approx(300 * MM_PER_COUNT)
+
+
+def test_a_fold_waits_for_most_boards_so_a_split_cycle_counts_once():
+    """A cycle's replies split over two folds (the end of the cycle heard
+    before two delayed replies) counted the cycle twice: each part's median
+    was the cycle's travel, and a drive read about twice its travel."""
+    odometry = WheelOdometry()
+    for board in tables.DRIVE_BOARDS:
+        odometry.update(board, 0)
+    for cycle in range(1, 11):
+        early, late = tables.DRIVE_BOARDS[:4], tables.DRIVE_BOARDS[4:]
+        for board in early:
+            odometry.update(board, 100 * cycle)
+        odometry.fold()                         # the end of the cycle, two replies still on their way
+        for board in late:
+            odometry.update(board, 100 * cycle)
+            assert not odometry.fold()          # two boards alone never fold
+    assert odometry.mm == pytest.approx(1000 * MM_PER_COUNT)

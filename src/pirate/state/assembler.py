@@ -35,6 +35,9 @@ from pirate.state.odometry import WheelOdometry
 STALE_AFTER_S = 0.3
 #: The Mega's refresh cycle (s) until replies have shown the real one.
 CYCLE_S = 0.1
+#: Mega cycles without a fold (board 28 lost or silent) after which the
+#: odometry folds at a drive board's reply instead.
+FOLD_OVERDUE_CYCLES = 2.5
 #: Replies per board the loss rate and the cycle are judged over (10 s).
 HISTORY_REPLIES = 100
 #: Chance a board that merely loses replies is taken for silent, per cycle:
@@ -80,6 +83,7 @@ class StateAssembler(object):
         self._odometry = WheelOdometry()
         self._orientation = math.pi / 2
         self._previous_board = None
+        self._folded_at = None          # when the wheels' increments were last folded (or the first reply came)
 
     def update(self, board, data, now):
         """Take one Small State; return True when a refresh cycle is complete.
@@ -91,18 +95,24 @@ class StateAssembler(object):
         if board == tables.IMU_BOARD:
             self._orientation = _orientation(data, self._orientation)
         new_cycle = self._previous_board is not None and board <= self._previous_board
-        if new_cycle:
-            self._odometry.fold()       # the last cycle missed board 28
         if board in tables.DRIVE_BOARDS:
             self._odometry.update(board, data[tables.SS_ODOMETRY])
         self._raw[board] = data
         self._replies.reply(board, now)
         self._arrival[board] = now
-        complete = board == tables.BOARDS[-1] or new_cycle
-        if board == tables.BOARDS[-1]:
-            self._odometry.fold()
+        self._fold_odometry(board, now)
         self._previous_board = board
-        return complete
+        return board == tables.BOARDS[-1] or new_cycle
+
+    def _fold_odometry(self, board, now):
+        """Fold the wheels' increments at the end of a cycle (board 28), or,
+        while board 28 is not heard, once a fold is :data:`FOLD_OVERDUE_CYCLES` late."""
+        last = tables.BOARDS[-1]
+        if self._folded_at is None:
+            self._folded_at = now
+        overdue = now - self._folded_at > FOLD_OVERDUE_CYCLES * self._replies.cycle()
+        if (board == last or (overdue and board in tables.DRIVE_BOARDS)) and self._odometry.fold():
+            self._folded_at = now
 
     def command(self, setpoints, modes, now):
         """The setpoint and control arrays sent to the robot at ``now`` (the

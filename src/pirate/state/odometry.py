@@ -11,6 +11,13 @@ while at most two of the six wheels misbehave the median is a wheel that
 rolls on the wall, and a dead or silent encoder only drops out of the vote
 (a board that did not report in the cycle does not vote).
 
+A cycle is folded only when most drive boards (:data:`MIN_VOTES` of six)
+have reported since the last fold; otherwise their increments wait for
+the next fold. A fold with a few boards would count their cycle a second
+time when the others' replies of the same cycle are folded later (replies
+of one cycle split over two folds by loss, delay or reordering each give
+the cycle's travel as their median).
+
 Three wheels spinning free outvote nothing: lying on its side with one V
 open, that part rests on its shells and its three wheels all count the
 setpoint (twin: measurements.md#twin-odometry). So
@@ -26,6 +33,10 @@ reach the laptop, as for the setpoints). Pure: no ROS.
 import statistics
 
 from pirate.robot import tables, units
+
+#: Drive boards that must have reported for a fold: a majority of the six
+#: (measurements.md#lossy-bus-odometry).
+MIN_VOTES = 4
 
 
 class _Fused(object):
@@ -60,10 +71,14 @@ class WheelOdometry(object):
         self._pending[board] = self._pending.get(board, 0) + units.unwrap_int16(last, raw)
 
     def fold(self):
-        """End of a refresh cycle: add the median of the wheels' increments."""
+        """End of a refresh cycle: add the median of the wheels' increments,
+        when :data:`MIN_VOTES` boards have reported (else they wait); True when folded."""
+        if len(self._pending) < MIN_VOTES:
+            return False
         for fused in (self._robot,) + tuple(self._parts.values()):
             fused.fold(self._pending)
         self._pending = {}
+        return True
 
     @property
     def mm(self):
