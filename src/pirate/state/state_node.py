@@ -71,9 +71,12 @@ class PirateStateNode(object):
             return self.assembler.snapshot(self._clock())
 
     def _on_small_state(self, msg):
+        now = self._clock()
+        if not now:     # simulated time before this node's first /clock: no arrival time to judge silence by
+            return
         try:
             with self._lock:
-                complete = self.assembler.update(msg.board, msg.data, self._clock())
+                complete = self.assembler.update(msg.board, msg.data, now)
         except BadState as bad:
             if str(bad) not in self._logged:
                 self._logged.add(str(bad))
