@@ -23,8 +23,8 @@ IMU_SENSOR_SERVICE = '/pirate/imu_sensor'         # pirate/ImuSensor
 SERVER_STATUS_SERVICE = '/pirate/server_status'   # pirate/ServerStatus
 PIRATE_ACTION = '/pirate'                     # pirate/PirateAction
 #: The physics twin's ground truth (geometry_msgs/PoseArray, one pose per
-#: module, pirate.sim.twin.TRUTH_BODIES order): tests, bench and RViz only,
-#: never a PAB (the real robot has no such topic).
+#: module, pirate.sim.twin_robot.TRUTH_BODIES order): tests, bench, RViz
+#: and the mission plot only, never a PAB (the real robot has no such topic).
 GROUND_TRUTH_TOPIC = '/pirate/sim/ground_truth'
 #: The cameras (sensor_msgs/Image + CameraInfo, image_transport layout:
 #: <ns>/image_raw, <ns>/camera_info), twin or real robot alike, and the

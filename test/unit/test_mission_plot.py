@@ -15,6 +15,7 @@ import rospy  # noqa: E402
 from std_msgs.msg import Float64  # noqa: E402
 
 from pirate import names  # noqa: E402
+from pirate.msg import MissionActionGoal, MissionGoal  # noqa: E402
 from pirate.supervisory import planner  # noqa: E402
 from pirate.viz import bag_ros, mission_plot, plot_cli  # noqa: E402
 
@@ -98,3 +99,51 @@ def test_the_mission_plot_draws_the_maps_junctions():
     assert found and all(mm > 0 for _, mm in found)
     run = mission_plot.MissionRun([0.0], [400.0], [], [], [('pit', 400.0)], 't', found)
     assert [value for _, value in mission_plot.panel(run).guards] == [mm for _, mm in found]
+
+
+def _truth_at(pipe_map, along_m):
+    """A ground-truth PoseArray with every body at the path's axis ``along_m`` (m)."""
+    from geometry_msgs.msg import Pose, PoseArray
+    from pirate.sim.twin_robot import TRUTH_BODIES
+    msg = PoseArray()
+    for _ in TRUTH_BODIES:
+        pose = Pose()
+        pose.position.x, pose.position.y, pose.position.z = pipe_map.locate(along_m)[1].origin
+        msg.poses.append(pose)
+    return msg
+
+
+@pytest.mark.parametrize('along_m', [
+    [0.4, 0.45, 0.5, 1.2, 1.8, 2.1],        # along the main, and a jump past the search window
+    [2.1, 1.9, 0.6]])                       # backwards
+def test_the_twins_true_position_is_its_middle_projected_on_the_map(along_m):
+    from pirate.world import network
+    pipe_map = network.load(network.world_path('inspection_tee_90'))
+    truth = [(0.3 * k, _truth_at(pipe_map, a)) for k, a in enumerate(along_m)]
+    times, mm = mission_plot.true_along(pipe_map, truth)
+    assert times == pytest.approx([0.3 * k for k in range(len(along_m))])
+    assert mm == pytest.approx([a * 1000.0 for a in along_m], abs=0.5)
+
+
+def test_the_true_position_is_drawn_a_sample_every_fifth_of_a_second():
+    from pirate.world import network
+    pipe_map = network.load(network.world_path('straight_90'))
+    truth = [(0.1 * k, _truth_at(pipe_map, 0.4 + 0.01 * k)) for k in range(10)]
+    times, _ = mission_plot.true_along(pipe_map, truth)
+    assert times == pytest.approx([0.0, 0.2, 0.4, 0.6, 0.8])
+    assert mission_plot.true_along(pipe_map, []) == ()
+
+
+def test_a_run_with_the_twins_ground_truth_draws_the_true_position_beside_the_estimate(run):
+    from pirate.world import network
+    pipe_map = network.load(network.world_path('straight_90'))
+    recorded = {topic: [] for topic in mission_plot.TOPICS}
+    recorded[mission_plot.ALONG_TOPIC] = [(10.0 + 0.2 * k, Float64(data=400.0 + 10 * k)) for k in range(5)]
+    recorded[mission_plot.TRUTH_TOPIC] = [(10.0 + 0.2 * k, _truth_at(pipe_map, 0.41 + 0.01 * k)) for k in range(5)]
+    goal = MissionActionGoal(goal=MissionGoal(map='straight_90', points=['pit', 'target']))
+    recorded[mission_plot.GOAL_TOPIC] = [(10.0, goal)]
+    drawn = mission_plot.panel(mission_plot.mission_run(recorded))
+    assert [label for label, _, _ in drawn.series] == ['estimate', 'true (twin)']
+    assert drawn.series[1][2] == pytest.approx([410.0, 420.0, 430.0, 440.0, 450.0], abs=0.5)
+    assert 'truth' in drawn.title
+    assert not run.truth        # the recorded bag holds no ground truth: the estimate alone

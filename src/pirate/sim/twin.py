@@ -21,9 +21,6 @@ from pirate.world import network
 
 PICO_PERIOD_S = 0.02
 SETTLE_S = 0.5            # physics before the clock starts: the robot comes to rest
-#: Bodies whose true pose the ground truth reports, front to rear.
-TRUTH_BODIES = tuple(m for m, _, _ in reversed(twin_robot.FRONT_CHAIN)) + (
-    twin_robot.ROTATIONAL_FRONT, twin_robot.ROOT) + tuple(m for m, _, _ in twin_robot.REAR_CHAIN)
 ANGLE_BOARDS = {j.board: j.name for j in tables.JOINTS if j.board is not None and j.name != 'rotation'}
 
 
@@ -218,11 +215,11 @@ class TwinRobot(CommandLatch):
         return forces
 
     def ground_truth_poses(self):
-        """[(position, quaternion w x y z)] of TRUTH_BODIES, world frame."""
-        return [self.body_pose(name) for name in TRUTH_BODIES]
+        """[(position, quaternion w x y z)] of twin_robot.TRUTH_BODIES, world frame."""
+        return [self.body_pose(name) for name in twin_robot.TRUTH_BODIES]
 
     def ground_truth(self):
         """True pose of every module, wheel contacts, travel along the network."""
-        return {'time': self.time, 'poses': dict(zip(TRUTH_BODIES, self.ground_truth_poses())),
+        return {'time': self.time, 'poses': dict(zip(twin_robot.TRUTH_BODIES, self.ground_truth_poses())),
                 'wheel_contacts': self.wheel_contacts(), 'roll': self.roll(),
                 'front_roll': self.roll(twin_robot.ROTATIONAL_FRONT)}

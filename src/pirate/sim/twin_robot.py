@@ -43,6 +43,10 @@ WHEEL_CLASS = 'wheel'
 ROOT = 'rotational_rear'
 ROOT_JOINT = 'root'
 ROTATIONAL_FRONT = 'rotational_front'
+#: Bodies whose true pose the ground truth reports, front to rear
+#: (names.GROUND_TRUTH_TOPIC's poses, in this order).
+TRUTH_BODIES = tuple(m for m, _, _ in reversed(FRONT_CHAIN)) + (ROTATIONAL_FRONT, ROOT) + tuple(
+    m for m, _, _ in REAR_CHAIN)
 CAMERA_BODIES = (('camera_tilt', (0, -1, 0)), ('camera_pan', (0, 0, 1)))
 #: MuJoCo cameras and the LED lights beside them: the front camera on the
 #: pan/tilt, the rear camera fixed in the rear module's end, each looking

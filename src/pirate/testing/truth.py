@@ -4,12 +4,9 @@ the executive (the real robot has no ground truth).
 
 The robot's middle is the midpoint of the rotational module's two bodies
 (the point a world's ``start`` and the planner's positions refer to),
-projected on the path axis.
+projected on the path axis (:meth:`pirate.world.network.Network.nearest_along`).
 """
 from pirate.sim.twin_robot import ROOT, ROTATIONAL_FRONT
-
-PROJECT_STEP_M = 0.005
-FINE_STEPS = 50
 
 
 def middle(truth):
@@ -18,20 +15,9 @@ def middle(truth):
     return tuple((x + y) / 2.0 for x, y in zip(a, b))
 
 
-def along_m(pipe_map, position):
-    """The path position (m) nearest to ``position`` (world, m): every 5 mm,
-    then to 0.1 mm around the best."""
-    def dist(along):
-        origin = pipe_map.locate(along)[1].origin
-        return sum((a - b) ** 2 for a, b in zip(origin, position))
-    coarse = min((i * PROJECT_STEP_M for i in range(int(pipe_map.length / PROJECT_STEP_M) + 1)), key=dist)
-    fine = [coarse + (i - FINE_STEPS) * PROJECT_STEP_M / FINE_STEPS for i in range(2 * FINE_STEPS + 1)]
-    return min((a for a in fine if 0.0 <= a <= pipe_map.length), key=dist)
-
-
 def robot_along_m(pipe_map, truth):
     """Where the twin's robot middle is along ``pipe_map``, m."""
-    return along_m(pipe_map, middle(truth))
+    return pipe_map.nearest_along(middle(truth))
 
 
 def on_pab_state(harness, server_state, pab_state, action):

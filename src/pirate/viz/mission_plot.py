@@ -6,8 +6,11 @@ Server's goals say which PAB ran when (every goal sent, re-clamps and
 retries too); the mission's feedback says when it paused and its result
 how it ended. Drawn with pirate.viz.plot's renderer: one panel, a line
 tN at each PAB (named in the key), red dashed lines at pauses and at the
-end, and the route's named points (the mission goal's map) as dotted
-levels, so a drive that stopped short of its target shows.
+end, the route's named points (the mission goal's map) as dotted levels,
+so a drive that stopped short of its target shows, and the map's
+junctions as dashed levels. When the run is the physics twin's and the bag
+holds its ground truth (``names.GROUND_TRUTH_TOPIC``), the true position
+of the robot's middle along the map is drawn beside the estimate.
 
 pirate.viz.bag_ros reads the bag; ``mission_run``, ``panel`` and
 ``plot_mission`` take plain data, so a test checks what was drawn.
@@ -19,6 +22,7 @@ from pirate.sequencer.goals import OPTION_NAMES
 from pirate.supervisory import planner
 from pirate.supervisory.executive import WAIT_RESUME
 from pirate.viz import plot
+from pirate.sim.twin_robot import ROOT, ROTATIONAL_FRONT, TRUTH_BODIES
 from pirate.viz.plot import PAB_NAMES
 from pirate.world import network
 
@@ -27,14 +31,20 @@ GOAL_TOPIC = names.MISSION_ACTION + '/goal'
 FEEDBACK_TOPIC = names.MISSION_ACTION + '/feedback'
 RESULT_TOPIC = names.MISSION_ACTION + '/result'
 PAB_GOAL_TOPIC = names.PIRATE_ACTION + '/goal'
-TOPICS = (ALONG_TOPIC, GOAL_TOPIC, FEEDBACK_TOPIC, RESULT_TOPIC, PAB_GOAL_TOPIC)
+TRUTH_TOPIC = names.GROUND_TRUTH_TOPIC
+TOPICS = (ALONG_TOPIC, GOAL_TOPIC, FEEDBACK_TOPIC, RESULT_TOPIC, PAB_GOAL_TOPIC, TRUTH_TOPIC)
+#: The robot's middle: between these two ground-truth poses (their index in TRUTH_BODIES).
+MIDDLE_POSES = tuple(TRUTH_BODIES.index(body) for body in (ROOT, ROTATIONAL_FRONT))
+#: Simulated s between two true positions drawn (the estimate comes at 5 Hz).
+TRUTH_EVERY_S = 0.2
 
 #: A mission's run: ``times`` s and ``along_mm`` (the estimate); ``markers``
 #: [(t s, 'PAB ...')]; ``events`` [(t s, 'paused ...' / 'mission ...')];
 #: ``points`` [(name, mm along the map)]; ``title`` text; ``junctions``
-#: [(what, mm along the map)] of the map's bends and tees.
-MissionRun = collections.namedtuple('MissionRun', 'times along_mm markers events points title junctions',
-                                    defaults=((),))
+#: [(what, mm along the map)] of the map's bends and tees; ``truth``
+#: ([t s], [mm]) the twin's true position along the map, () without one.
+MissionRun = collections.namedtuple('MissionRun', 'times along_mm markers events points title junctions truth',
+                                    defaults=((), ()))
 
 
 def mission_run(recorded, start_s=None):
@@ -52,8 +62,11 @@ def mission_run(recorded, start_s=None):
     events = [(t - t0, text) for t, text in pauses(feedback)]
     events += [(t - t0, 'mission %s: %s' % (msg.result.status, msg.result.message)) for t, msg in results]
     route = _route(recorded[GOAL_TOPIC], results)
+    pipe_map = route_map(route)
+    truth = true_along(pipe_map, [(t - t0, msg) for t, msg in recorded.get(TRUTH_TOPIC, ())]) if pipe_map else ()
     return MissionRun([t - t0 for t, _ in along], [msg.data for _, msg in along], markers, sorted(events),
-                      route_points(route), mission_title(route, results), route_junctions(route))
+                      route_points(route, pipe_map), mission_title(route, results),
+                      junctions(pipe_map) if pipe_map else (), truth)
 
 
 def pab_label(goal):
@@ -86,13 +99,19 @@ def _route(mission_goals, results):
     return planner.route_of(plans[-1]) if plans else None
 
 
-def route_points(route):
-    """[(name, mm)] of the route's points on its map; [] when it cannot be read."""
+def route_map(route):
+    """The route's map (a :class:`pirate.world.network.Network`), or None when it cannot be read."""
     if route is None:
-        return []
+        return None
     try:
-        pipe_map = network.load(network.world_path(route[0]))
+        return network.load(network.world_path(route[0]))
     except (network.WorldError, OSError):
+        return None
+
+
+def route_points(route, pipe_map):
+    """[(name, mm)] of the route's points on its map; [] without a map."""
+    if pipe_map is None:
         return []
     unique = sorted(set(route[1]) & set(pipe_map.points), key=route[1].index)
     return [(name, pipe_map.points[name] * 1000.0) for name in unique]
@@ -108,14 +127,19 @@ def junctions(pipe_map):
     return found
 
 
-def route_junctions(route):
-    """:func:`junctions` of the route's map; () when it cannot be read."""
-    if route is None:
-        return ()
-    try:
-        return junctions(network.load(network.world_path(route[0])))
-    except (network.WorldError, OSError):
-        return ()
+def true_along(pipe_map, truth, every_s=TRUTH_EVERY_S):
+    """([t s], [mm]): where the twin's robot middle is along ``pipe_map``,
+    from ``truth`` [(t s, geometry_msgs/PoseArray of TRUTH_BODIES)], a
+    sample every ``every_s``; () without one."""
+    times, along_mm, near_m = [], [], None
+    for t, msg in truth:
+        if times and t - times[-1] < every_s - 1e-9:     # (the stamps' rounding)
+            continue
+        a, b = (msg.poses[i].position for i in MIDDLE_POSES)
+        near_m = pipe_map.nearest_along(((a.x + b.x) / 2, (a.y + b.y) / 2, (a.z + b.z) / 2), near_m)
+        times.append(t)
+        along_mm.append(near_m * 1000.0)
+    return (times, along_mm) if times else ()
 
 
 def mission_title(route, results):
@@ -125,10 +149,14 @@ def mission_title(route, results):
 
 
 def panel(run):
-    """The one :class:`pirate.viz.plot.Panel`: the estimate, the route's points
-    (dotted levels) and the map's junctions (dashed grey levels)."""
-    return plot.Panel('Distance along the route (the executive\'s estimate)', 'along the map [mm]',
-                      [('estimate', run.times, run.along_mm)],
+    """The one :class:`pirate.viz.plot.Panel`: the estimate (and the twin's
+    true position when the run has it), the route's points (dotted levels)
+    and the map's junctions (dashed grey levels)."""
+    series = [('estimate', run.times, run.along_mm)]
+    if run.truth:
+        series.append(('true (twin)',) + tuple(run.truth))
+    return plot.Panel('Distance along the route (%s)' % ('estimate, twin\'s truth' if run.truth else
+                                                         'the executive\'s estimate'), 'along the map [mm]', series,
                       [('%s at %.0f mm' % (what, mm), mm) for what, mm in run.junctions], [],
                       [(name, mm) for name, mm in run.points])
 

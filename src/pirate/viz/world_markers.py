@@ -3,7 +3,7 @@
 The pipe network (pirate.world.network) as translucent cylinders: every
 straight, both legs of a mitre bend, a T-joint's run and branch, end caps
 as thin discs, each defect as a sphere on the wall. The robot at its true pose from the physics (the ground
-truth topic, one pose per module in pirate.sim.twin.TRUTH_BODIES order) as
+truth topic, one pose per module in pirate.sim.twin_robot.TRUTH_BODIES order) as
 boxes of the twin's module size with their wheels. Plain tuples out; the
 node (pirate.viz.world_node) turns them into markers. No ROS import.
 """

@@ -109,6 +109,15 @@ def turned(frame, turn):
     return Frame(frame.origin, _rotate(frame.axes, axis.index(1), sign))
 
 
+#: Path step (m) of :meth:`Network.nearest_along`'s coarse search; its fine
+#: one is FINE_STEPS steps of a fiftieth either side (0.1 mm).
+PROJECT_STEP_M = 0.005
+FINE_STEPS = 50
+#: How far (m) from where a moving robot was :meth:`Network.nearest_along`
+#: looks: far above what it travels between two samples of a run.
+NEAR_WINDOW_M = 0.2
+
+
 class Network(object):
     """Pieces and obstacles in travel order, laid out from the origin."""
 
@@ -141,6 +150,23 @@ class Network(object):
     def diameter_at(self, along_m):
         """Inner diameter (m) of the piece at ``along_m``."""
         return self.pieces[self.locate(along_m)[0]].diameter
+
+    def nearest_along(self, position, near_m=None):
+        """The path position (m) nearest to ``position`` (world, m): every
+        :data:`PROJECT_STEP_M` of the path (or within :data:`NEAR_WINDOW_M`
+        of ``near_m``, where it was a moment ago, unless the best is at that
+        window's edge), then to a fiftieth of that around the best."""
+        def dist(along):
+            return sum((a - b) ** 2 for a, b in zip(self.locate(along)[1].origin, position))
+        low, high = 0.0, self.length
+        if near_m is not None:
+            low, high = max(low, near_m - NEAR_WINDOW_M), min(high, near_m + NEAR_WINDOW_M)
+        steps = int((high - low) / PROJECT_STEP_M)
+        coarse = min((low + i * PROJECT_STEP_M for i in range(steps + 1)), key=dist)
+        if near_m is not None and (0.0 < low == coarse or coarse == low + steps * PROJECT_STEP_M < self.length):
+            return self.nearest_along(position)     # it moved farther than the window: look everywhere
+        fine = [coarse + (i - FINE_STEPS) * PROJECT_STEP_M / FINE_STEPS for i in range(2 * FINE_STEPS + 1)]
+        return min((a for a in fine if low <= a <= high), key=dist)
 
 
 def world_path(world):
