@@ -9,6 +9,7 @@ import pytest
 
 import sweep_fake_bench as fake
 from pirate.sweep import cli, engine, records, runner
+from pirate.sweep.cases import Sweep
 from pirate.sweep.progress import Progress
 
 BENCH = fake.__file__
@@ -139,3 +140,12 @@ def test_the_progress_line_is_rewritten_on_a_terminal_and_plain_otherwise():
 
 if __name__ == '__main__':
     pytest.main([__file__])
+
+
+def test_a_bench_summary_is_printed_under_the_table_from_the_records(tmp_path):
+    path = str(tmp_path / 'sweep.jsonl')
+    summed = Sweep('fake', fake.PARAMETERS, fake.run, summary=lambda found: ['%d runs summed' % len(found)])
+    out = io.StringIO()
+    assert cli.main(summed, build(['ok'] * 3), sweep_args(path), out) == 0
+    text = out.getvalue()
+    assert text.index('fake even') < text.index('3 runs summed')

@@ -20,14 +20,16 @@ class Sweep(object):
     of them, one per variant: see :func:`pirate.sweep.records.complete`),
     ``check(cases, settings)`` (errors, a list of strings: a world that does
     not load, ...; optional) and the wall seconds a case may take before it
-    counts as hung (``time_limit_s``)."""
+    counts as hung (``time_limit_s``); ``summary(records)``: lines the runner
+    prints under the table (optional)."""
 
-    def __init__(self, name, parameters, run, check=None, time_limit_s=600.0):
+    def __init__(self, name, parameters, run, check=None, time_limit_s=600.0, summary=None):
         self.name = name
         self.parameters = tuple(parameters)
         self.run = run
         self.check = check or (lambda cases, settings: [])
         self.time_limit_s = time_limit_s
+        self.summary = summary or (lambda records: [])
 
 
 def key_of(params, names):

@@ -74,7 +74,8 @@ def execute(sweep, todo, engine, path, head, done, stream):
     finally:
         engine.close()
         writer.close()
-    stream.write('\n'.join(report.table(records.read(path)[1])) + '\n')
+    found = records.read(path)[1]
+    stream.write('\n'.join(report.table(found) + sweep.summary(found)) + '\n')
     lost_text = ', %d crashed or hung' % lost if lost else ''
     stream.write('%d cases in %s wall%s; records: %s\n'
                  % (len(todo), clock_text(time.monotonic() - started), lost_text, path))
