@@ -1,8 +1,14 @@
 """How bench/mission_sweep --job judges a run of an inspection job and sums
 its runs (pirate.testing.job_run): marks fall due as the job node decides,
 each against the truth at that moment; no twin."""
+import os
+import subprocess
+import sys
+
 from pirate.inspection.job import Mark
 from pirate.testing import job_run
+
+BENCH = os.path.join(os.path.dirname(__file__), '..', '..', 'bench', 'mission_sweep')
 
 IN_800, IN_1790, BACK_2190 = (Mark(800.0, 'in', 'leak', ''), Mark(1790.0, 'in', 'corrosion', ''),
                               Mark(2190.0, 'back', 'water', ''))
@@ -79,3 +85,15 @@ def test_the_summary_gives_every_run_then_success_s_per_m_and_the_errors_in_and_
     assert lines[4].endswith('41.0 / 42.0')
     assert lines[5].endswith('in, median / worst: 8 / 20 mm (4 marks)')
     assert lines[6].endswith('back, median / worst: 50 / 70 mm (2 marks)')
+
+
+def test_a_job_the_bench_cannot_run_is_an_error_before_any_run(tmp_path):
+    bad = tmp_path / 'job.yaml'
+    bad.write_text('map: inspection_network_90\nroute: [launch_pit]\n')
+    for extra, said in (([str(bad)], 'route: the names of two points or more'),
+                        (['config/missions/inspection_demo.yaml', '--to', 'target'], '--job names the map')):
+        done = subprocess.run([sys.executable, BENCH, '--workers', '0', '--out', str(tmp_path / 'r.jsonl'), '--job']
+                              + extra, cwd=os.path.join(os.path.dirname(BENCH), '..'), stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, universal_newlines=True, timeout=120)
+        assert done.returncode == 2 and said in done.stderr, done.stderr
+        assert not (tmp_path / 'r.jsonl').exists()
