@@ -91,7 +91,7 @@ def test_a_job_the_bench_cannot_run_is_an_error_before_any_run(tmp_path):
     bad = tmp_path / 'job.yaml'
     bad.write_text('map: inspection_network_90\nroute: [launch_pit]\n')
     for extra, said in (([str(bad)], 'route: the names of two points or more'),
-                        (['config/missions/inspection_demo.yaml', '--to', 'target'], '--job names the map')):
+                        (['config/jobs/inspection_demo.yaml', '--to', 'target'], '--job names the map')):
         done = subprocess.run([sys.executable, BENCH, '--workers', '0', '--out', str(tmp_path / 'r.jsonl'), '--job']
                               + extra, cwd=os.path.join(os.path.dirname(BENCH), '..'), stdout=subprocess.PIPE,
                               stderr=subprocess.PIPE, universal_newlines=True, timeout=120)
