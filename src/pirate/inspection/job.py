@@ -16,6 +16,8 @@ from pirate.inspection import findings
 Job = collections.namedtuple('Job', 'map points marks')
 Mark = collections.namedtuple('Mark', 'along_mm leg kind note')
 LEGS = ('in', 'back')
+#: The PABs during which the estimate is odometry round a corner, not yet re-anchored.
+JUNCTION_PABS = ('MITRE_BEND', 'T_JOINT')
 
 
 class JobError(ValueError):
@@ -60,20 +62,28 @@ class DueMarks(object):
     """Which marks are due as the mission goes: a mark is due once, when
     the estimate passes its ``along_mm`` (either way, a re-anchoring jump
     included) on its leg; the leg is ``back`` from the first step the
-    robot takes rear first (a negative distance) on."""
+    robot takes rear first (a negative distance) on. While a junction PAB
+    runs no mark falls due: its wheels' odometry runs ahead of the robot's
+    middle round the corner until the turn's end re-anchors the estimate
+    (measurements.md#round-trip-mark-error); a mark it passed falls due
+    once the estimate has passed it after."""
 
     def __init__(self, marks):
         self._left = list(marks)
         self._last = None
+        self._holding = False
         self.leg = 'in'
 
-    def step(self, distance_mm):
-        """The mission's running step has the signed distance ``distance_mm``."""
+    def step(self, distance_mm, pab=''):
+        """The mission's running step is PAB ``pab`` with the signed distance ``distance_mm``."""
         if distance_mm < 0:
             self.leg = 'back'
+        self._holding = pab in JUNCTION_PABS
 
     def passed(self, along_mm):
         """The marks due now the estimate is at ``along_mm``, in the order passed."""
+        if self._holding:
+            return []
         last = along_mm if self._last is None else self._last
         self._last = along_mm
         low, high = min(last, along_mm), max(last, along_mm)

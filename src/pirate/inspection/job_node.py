@@ -46,7 +46,7 @@ class Marker(object):
 
     def _on_step(self, msg):
         with self._lock:
-            self._due.step(msg.feedback.distance_mm)
+            self._due.step(msg.feedback.distance_mm, msg.feedback.pab)
 
     def _on_along(self, msg):
         with self._lock:

@@ -36,10 +36,10 @@ class MarkWatch(object):
         self._step = None
         self.seen = []
 
-    def step(self, distance_mm, number=None):
-        """The mission's running step (``number``) has the signed distance ``distance_mm``."""
+    def step(self, distance_mm, number=None, pab=''):
+        """The mission's running step (``number``) is PAB ``pab`` with the signed distance ``distance_mm``."""
         with self._lock:
-            self._due.step(distance_mm)
+            self._due.step(distance_mm, pab)
             self._step = number
 
     def check(self):
