@@ -64,9 +64,9 @@ class FilClampTest(unittest.TestCase):
         result = self.client.get_result()
         self.assertTrue(result.success, result.message)
 
-    def test_2_unplug_mid_pab_aborts_then_next_goal_succeeds(self):
-        home = PirateGoal(name=PirateGoal.HOME, pipe_diameter=90)
-        self.client.send_goal(home)
+    def _fault_mid_clamp(self, fault):
+        """Home, start a Clamp Straight, and inject ``fault`` (a fault topic word) a second into it."""
+        self.client.send_goal(PirateGoal(name=PirateGoal.HOME, pipe_diameter=90))
         self.assertTrue(self.client.wait_for_result(rospy.Duration(120)), 'home: no result')
         primitives = []
         self._clamp(lambda fb: primitives.append(fb.primitive))
@@ -75,7 +75,10 @@ class FilClampTest(unittest.TestCase):
             self.assertLess(time.monotonic(), deadline, 'PAB never started')
             time.sleep(0.05)
         time.sleep(1.0)   # mid-PAB
-        self.fault.publish(String('unplug'))
+        self.fault.publish(String(fault))
+
+    def test_2_unplug_mid_pab_aborts_then_next_goal_succeeds(self):
+        self._fault_mid_clamp('unplug')
         self.assertTrue(self.client.wait_for_result(rospy.Duration(30)), 'no result after unplug')
         self.assertFalse(self.client.get_result().success, 'PAB did not abort on unplug')
         self.assertEqual(self.client.get_state(), actionlib.GoalStatus.ABORTED)
@@ -92,16 +95,7 @@ class FilClampTest(unittest.TestCase):
         self.assertTrue(result.success, result.message)
 
     def test_3_reset_mid_pab_ends_the_goal_and_rearms_nothing(self):
-        self.client.send_goal(PirateGoal(name=PirateGoal.HOME, pipe_diameter=90))
-        self.assertTrue(self.client.wait_for_result(rospy.Duration(120)), 'home: no result')
-        primitives = []
-        self._clamp(lambda fb: primitives.append(fb.primitive))
-        deadline = time.monotonic() + 30
-        while not primitives:
-            self.assertLess(time.monotonic(), deadline, 'PAB never started')
-            time.sleep(0.05)
-        time.sleep(1.0)   # mid-PAB
-        self.fault.publish(String('reset'))
+        self._fault_mid_clamp('reset')
         self.assertTrue(self.client.wait_for_result(rospy.Duration(30)), 'no result after the reset')
         result = self.client.get_result()
         self.assertFalse(result.success, 'the PAB went on through a reset')
