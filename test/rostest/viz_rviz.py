@@ -3,8 +3,10 @@
 
 Checks, in order: the state node's joint states name exactly the URDF's
 moving joints; TF holds pipe -> base_link rolled
-by the simulated orientation (REP 103 roll = pi/2 - orientation); the pipe
-marker has the pipe's diameter; and, on a private Xvfb display, RViz with
+by the simulated orientation (REP 103 roll = pi/2 - orientation) and
+placed along the pipe's axis at the odometry; the pipe
+marker has the pipe's diameter; the text beside the robot says its
+odometry; and, on a private Xvfb display, RViz with
 rviz/pirate.rviz draws the robot's orange modules. The screenshot is saved
 to test-results/rviz_screenshot.png whatever the outcome.
 """
@@ -21,9 +23,10 @@ import rostest
 import tf2_ros
 from PIL import ImageGrab
 from sensor_msgs.msg import JointState
-from visualization_msgs.msg import Marker
+from visualization_msgs.msg import Marker, MarkerArray
 
 from pirate import names
+from pirate.msg import RobotState
 from pirate.viz import urdf_gen
 
 # The repository (not the workspace's folder of links): results land in its test-results/.
@@ -67,6 +70,8 @@ class VizRvizTest(unittest.TestCase):
         q = tf.transform.rotation
         roll = math.atan2(2 * (q.w * q.x + q.y * q.z), 1 - 2 * (q.x ** 2 + q.y ** 2))
         self.assertAlmostEqual(roll, math.pi / 2 - orientation, delta=0.05)
+        state = rospy.wait_for_message(names.ROBOT_STATE_TOPIC, RobotState, timeout=30)
+        self.assertAlmostEqual(tf.transform.translation.x, state.odometry / 1000.0, delta=0.005)
         # The wrist links come from robot_state_publisher: the URDF is loaded.
         buffer.lookup_transform('base_link', 'camera_link', rospy.Time(0), rospy.Duration(30))
 
@@ -74,6 +79,9 @@ class VizRvizTest(unittest.TestCase):
         self.assertEqual(marker.type, Marker.CYLINDER)
         self.assertAlmostEqual(marker.scale.x, rospy.get_param('~pipe_diameter') / 1000.0)
         self.assertLess(marker.color.a, 1.0)
+        position = rospy.wait_for_message('/pirate_viz/position_markers', MarkerArray, timeout=30)
+        texts = [m.text for m in position.markers if m.ns == 'position']
+        self.assertEqual(texts, ['odometry %d mm' % round(state.odometry)])
 
         if shutil.which('Xvfb') is None:
             self.skipTest('Xvfb missing (Debian package xvfb): the render is not checked')
