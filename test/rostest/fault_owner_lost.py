@@ -24,15 +24,13 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 
 from pirate import names
 from pirate.msg import ControlArray, PirateAction, PirateActionResult, PirateGoal, RobotState, SetpointArray
-from pirate.robot import tables
 from pirate.supervisory.goal_client_ros import SimpleGoalClient
 
-from ready import wait_robot_connected, wait_until
+from ready import wait_hold_on_wire, wait_robot_connected, wait_until
 
 DEADLINE_S = 60.0
 OWNER = '/goal_owner'
 CLIENT = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'goal_owner_client.py')
-HOLD_PWM = ('front_tilt', 'bend_i', 'bend_ii', 'bend_iii', 'bend_iv')
 #: Robot s over which the odometry must not change for the robot to stand (10 Mega cycles).
 STILL_S = 1.0
 STILL_MM = 1.0
@@ -106,11 +104,7 @@ class OwnerLostTest(unittest.TestCase):
         return next(s.header.stamp.to_sec() for s in self.states if abs(s.odometry - still.odometry) < STILL_MM)
 
     def _assert_hold_on_wire(self):
-        index = {name: tables.element(name).index for name in HOLD_PWM + ('wheels',)}
-        wait_until(lambda: self.controls and all(self.controls[-1].data[index[n]] == 0 for n in HOLD_PWM),
-                   'PWM modes of the hold on the wire')
-        wait_until(lambda: self.setpoints and all(self.setpoints[-1].data[i] == 0 for i in index.values()),
-                   'the hold setpoints on the wire')
+        wait_hold_on_wire(self.controls, self.setpoints)
 
     def _owner_error(self):
         return any(s.level == DiagnosticStatus.ERROR and OWNER in s.message

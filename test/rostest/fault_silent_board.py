@@ -15,13 +15,11 @@ from actionlib_msgs.msg import GoalStatus
 
 from pirate import names
 from pirate.msg import ControlArray, PirateAction, PirateGoal, RobotState, SetpointArray, SmallState
-from pirate.robot import tables
 from pirate.supervisory.goal_client_ros import SimpleGoalClient
 
-from ready import wait_robot_connected, wait_until
+from ready import wait_hold_on_wire, wait_robot_connected, wait_until
 
 DEADLINE_S = 60.0
-HOLD_PWM = ('front_tilt', 'bend_i', 'bend_ii', 'bend_iii', 'bend_iv')
 
 
 class SilentBoardTest(unittest.TestCase):
@@ -73,11 +71,7 @@ class SilentBoardTest(unittest.TestCase):
         wait_robot_connected()
 
     def _assert_hold_on_wire(self):
-        index = {name: tables.element(name).index for name in HOLD_PWM + ('wheels',)}
-        wait_until(lambda: self.controls and all(self.controls[-1].data[index[n]] == 0 for n in HOLD_PWM),
-                   'PWM modes of the hold on the wire')
-        wait_until(lambda: self.setpoints and all(self.setpoints[-1].data[i] == 0 for i in index.values()),
-                   'the hold setpoints on the wire')
+        wait_hold_on_wire(self.controls, self.setpoints)
 
     def test_silent_board_mid_clamp_then_mid_drive(self):
         self._silence_during(PirateGoal(name=PirateGoal.CLAMP_STRAIGHT, pipe_diameter=90), 'clamp rear', 27)

@@ -4,7 +4,11 @@ import time
 import rospy
 
 from pirate import names
+from pirate.robot import tables
 from pirate.srv import ServerStatus
+
+#: The joints the safe hold puts in PWM mode at 0.
+HOLD_PWM = ('front_tilt', 'bend_i', 'bend_ii', 'bend_iii', 'bend_iv')
 
 
 def wait_robot_connected(timeout_s=60.0):
@@ -44,3 +48,14 @@ def wait_panel_goals_connected(timeout_s=30.0):
         wait_until(lambda: connected in heard, 'the panel to reach the Pirate Server (diagnostics)', timeout_s)
     finally:
         ear.unregister()
+
+
+def wait_hold_on_wire(controls, setpoints):
+    """Wait until the last of ``controls`` / ``setpoints`` (lists of the
+    arrays heard on the wire) are the safe hold: :data:`HOLD_PWM` in PWM,
+    those and the wheels at 0."""
+    index = {name: tables.element(name).index for name in HOLD_PWM + ('wheels',)}
+    wait_until(lambda: controls and all(controls[-1].data[index[n]] == 0 for n in HOLD_PWM),
+               'PWM modes of the hold on the wire')
+    wait_until(lambda: setpoints and all(setpoints[-1].data[i] == 0 for i in index.values()),
+               'the hold setpoints on the wire')
