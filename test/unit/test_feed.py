@@ -160,3 +160,17 @@ def test_cancel_wins_over_feedback_loss(feed, clock):
     feed.cancel()
     with pytest.raises(Cancelled):
         feed.check()
+
+
+def test_a_state_sent_ahead_of_the_subscribers_clock_counts_from_when_it_was_sent(feed, clock):
+    """Simulated time: the manager's /clock lagged 0.2 s when the state came;
+    once its clock catches up the state is 0.25 s old, not 0.45 s."""
+    feed.push(view(1.0), sent_s=clock.now + 0.2)
+    clock.now += 0.45
+    assert feed.since_last_state() == pytest.approx(0.25) and feed.fresh()
+
+
+def test_a_state_sent_behind_the_subscribers_clock_counts_from_its_arrival(feed, clock):
+    feed.push(view(1.0), sent_s=clock.now - 0.2)
+    clock.now += 0.25
+    assert feed.since_last_state() == pytest.approx(0.25)

@@ -146,9 +146,13 @@ def test_cycle_completion():
     state = StateAssembler()
     flags = full_cycle(state, 0.0)
     assert flags == [False] * 8 + [True]
+    # the next cycle's first board completes nothing: one state per cycle
+    # (a second one would let a simulator in lockstep count it for the next cycle)
+    assert full_cycle(state, 0.1) == [False] * 8 + [True]
     # a cycle that misses board 28 completes when the next cycle starts again
-    for board in (20, 21, 22):
-        assert state.update(board, raw(), 0.1) is (board == 20)
+    for board in tables.BOARDS[:-1]:
+        assert state.update(board, imu(1.0) if board == tables.IMU_BOARD else raw(), 0.2) is False
+    assert state.update(tables.BOARDS[0], raw(), 0.3) is True
 
 
 def test_no_data_yet_gives_zero_angles_and_stale():

@@ -238,11 +238,13 @@ class PirateManager(object):
         if blocker:     # old angles are no feedback: the running primitive ends now
             self.feed.lose(blocker)
             return
+        stamp = msg.header.stamp.to_sec()
         self.feed.push(RobotView(dict(zip(msg.name, msg.position)), msg.orientation,
-                                 msg.odometry, msg.velocity, msg.header.stamp.to_sec(),
+                                 msg.odometry, msg.velocity, stamp,
                                  dict(zip(msg.name, msg.effort)),
                                  {'front': msg.odometry_front, 'rear': msg.odometry_rear},
-                                 tuple(bytearray(msg.missed_boards))))
+                                 tuple(bytearray(msg.missed_boards))),
+                       stamp if self._lockstep is not None else None)   # stamps on /clock, as the feed's clock
 
     def _on_small_state(self, _msg):
         now = self._link_clock()

@@ -142,7 +142,9 @@ class SimRobotNode(object):
         """Wait (bounded) until the stack took in the cycle just published."""
         if self._ack_sub is not None and not self.lockstep.wait(self._consumers):
             rospy.logwarn_throttle(10.0, 'sim_robot: the stack did not take a state in within %.1f s: '
-                                   'stepping on (%d times)', self.lockstep.bound_s, self.lockstep.overruns)
+                                   'stepping on (%d times; its newest acknowledgement stamped %.2f s before '
+                                   'the cycle)', self.lockstep.bound_s, self.lockstep.overruns,
+                                   self.lockstep.lag_s if self.lockstep.lag_s is not None else float('nan'))
 
     def _consumers(self):
         """Someone takes the states in and acknowledges them (a dead node drops its connection)."""
@@ -179,6 +181,9 @@ class SimRobotNode(object):
                 time.sleep(delay)       # this node is the clock: it paces on the wall
             elif delay < -0.5:
                 wall_next = time.monotonic()   # fell behind (a slow stack); do not try to catch up
+        if self._ack_sub is not None:
+            rospy.loginfo('sim_robot: lockstep: %d cycles stepped on unacknowledged; acknowledgements up to '
+                          '%.2f s behind their cycle', self.lockstep.overruns, self.lockstep.worst_lag_s)
 
 
 def _pose_array(poses):

@@ -101,8 +101,10 @@ class StateAssembler(object):
         self._replies.reply(board, now)
         self._arrival[board] = now
         self._fold_odometry(board, now)
+        # one state per cycle: at board 28, or (28 lost) when the next cycle starts
+        complete = board == tables.BOARDS[-1] or (new_cycle and self._previous_board != tables.BOARDS[-1])
         self._previous_board = board
-        return board == tables.BOARDS[-1] or new_cycle
+        return complete
 
     def _fold_odometry(self, board, now):
         """Fold the wheels' increments at the end of a cycle (board 28), or,

@@ -91,11 +91,14 @@ class RobotFeed(object):
         (it raises to end the wait, e.g. :class:`SensorFrozen`)."""
         self._watch = check
 
-    def push(self, view):
-        """A new state from the robot (called by the subscriber)."""
+    def push(self, view, sent_s=None):
+        """A new state from the robot (called by the subscriber); ``sent_s``:
+        when it was sent on the robot's clock, if that clock is the one
+        silence is judged on (simulated time: a subscriber whose /clock lags
+        takes the newer of the two)."""
         with self._cond:
             self._latest = view
-            self._arrival = self._robot_clock()
+            self._arrival = self._robot_clock() if sent_s is None else max(self._robot_clock(), sent_s)
             self._lost = None
             self._cond.notify_all()
 
