@@ -70,15 +70,41 @@ def test_marks_passed_in_one_step_come_in_the_order_passed():
     assert [m.kind for m in due.passed(1000)] == ['crack', 'leak']
 
 
-def test_no_mark_falls_due_while_a_junction_pab_runs_but_after_it():
+#: The inspection network's first bend (mm along the map) and the robot's reach (middle to its wheels).
+BEND_MM, REACH_MM = (1200.0, 1200.0), 315.0
+
+
+def test_no_mark_falls_due_while_a_junction_pab_takes_a_corner_but_after_it():
     """Round a corner the estimate is odometry that runs ahead of the robot's
     middle: a mark passed then fell due about 260 mm early (the round trip's
     1790 mm mark, every run)."""
-    due = jobs.DueMarks(_marks((1790, 'in', 'corrosion'), (1300, 'in', 'leak')))
-    path = [('DRIVE', 382, 785), ('MITRE_BEND', 700, 1500), ('MITRE_BEND', 700, 1950),   # ahead round the corner
-            ('CLAMP_STRAIGHT', 0, 1690), ('DRIVE', 386, 1750), ('DRIVE', 386, 1800)]      # re-anchored at its end
+    due = jobs.DueMarks(_marks((1790, 'in', 'corrosion'), (1300, 'in', 'leak')), [BEND_MM], REACH_MM)
+    path = [(1, 'DRIVE', 382, 785), (2, 'MITRE_BEND', 700, 1500), (2, 'MITRE_BEND', 700, 1950),  # ahead round
+            (3, 'CLAMP_STRAIGHT', 0, 1690), (4, 'DRIVE', 386, 1750), (4, 'DRIVE', 386, 1800)]  # re-anchored
     seen = []
-    for pab, distance, along in path:
-        due.step(distance, pab)
+    for number, pab, distance, along in path:
+        due.step(distance, pab, number)
         seen.append((pab, along, [m.kind for m in due.passed(along)]))
     assert [s for s in seen if s[2]] == [('CLAMP_STRAIGHT', 1690, ['leak']), ('DRIVE', 1800, ['corrosion'])]
+
+
+def test_a_mark_passed_before_the_corner_falls_due_during_the_junction_pab():
+    """The route's first PAB takes the bend from the launch pit: the leak at
+    800 mm, passed with the leading wheel still 85 mm short of the bend,
+    fell due only once the turn had ended, at 1290 mm."""
+    due = jobs.DueMarks(_marks((800, 'in', 'leak'), (1000, 'in', 'crack')), [BEND_MM], REACH_MM)
+    due.step(700, 'MITRE_BEND', 1)
+    assert [m.kind for m in due.passed(400)] == []
+    assert [m.kind for m in due.passed(810)] == ['leak']
+    assert [m.kind for m in due.passed(1010)] == []        # the wheel at the bend: held
+    due.step(0, 'CLAMP_STRAIGHT', 2)
+    assert [m.kind for m in due.passed(1290)] == ['crack']
+
+
+def test_a_t_joint_crossed_straight_on_holds_no_mark():
+    corners = jobs.corners_mm(network.load(network.world_path('inspection_network_90')))
+    assert len(corners) == 2        # the two bends; the T-joint is crossed straight on
+    due = jobs.DueMarks(_marks((2190, 'in', 'water')), corners, REACH_MM)
+    due.step(700, 'T_JOINT', 3)
+    assert [m.kind for m in due.passed(2100)] == []
+    assert [m.kind for m in due.passed(2200)] == ['water']

@@ -5,6 +5,7 @@ import os
 import subprocess
 import sys
 
+from pirate.inspection import job as jobs
 from pirate.inspection.job import Mark
 from pirate.testing import job_run
 
@@ -26,7 +27,7 @@ class Twin(object):
 
 def watched(marks):
     twin = Twin()
-    return twin, job_run.MarkWatch(marks, lambda: twin.estimate_mm, twin.truth)
+    return twin, job_run.MarkWatch(jobs.DueMarks(marks), lambda: twin.estimate_mm, twin.truth)
 
 
 def go(twin, watch, estimate_mm, truth_mm):

@@ -12,11 +12,13 @@ import collections
 import yaml
 
 from pirate.inspection import findings
+from pirate.sequencer.junctions import is_turn
+from pirate.supervisory import planner
 
 Job = collections.namedtuple('Job', 'map points marks')
 Mark = collections.namedtuple('Mark', 'along_mm leg kind note')
 LEGS = ('in', 'back')
-#: The PABs during which the estimate is odometry round a corner, not yet re-anchored.
+#: The junction PABs: round a corner their estimate is odometry, not yet re-anchored.
 JUNCTION_PABS = ('MITRE_BEND', 'T_JOINT')
 
 
@@ -58,30 +60,56 @@ def _mark(path, number, entry):
     return Mark(float(along), entry.get('leg', 'in'), kind, str(entry.get('note', '')))
 
 
+def corners_mm(pipe_map):
+    """(entry, exit) mm along ``pipe_map`` of each junction a route turns at
+    (a bend, a T-joint's branch): round one the estimate runs ahead."""
+    return [(junction.entry_m * 1000.0, junction.exit_m * 1000.0)
+            for junction in planner.junctions(pipe_map) if is_turn(junction.direction)]
+
+
+def due_marks(marks, pipe_map, robot):
+    """:class:`DueMarks` for ``marks`` on ``pipe_map``, held from when the
+    leading wheel of ``robot`` (config/supervisory.yaml: ``front_mm`` and
+    ``rear_mm`` from the middle) reaches a corner."""
+    return DueMarks(marks, corners_mm(pipe_map), max(robot['front_mm'], robot['rear_mm']))
+
+
 class DueMarks(object):
     """Which marks are due as the mission goes: a mark is due once, when
     the estimate passes its ``along_mm`` (either way, a re-anchoring jump
     included) on its leg; the leg is ``back`` from the first step the
     robot takes rear first (a negative distance) on. While a junction PAB
-    runs no mark falls due: its wheels' odometry runs ahead of the robot's
-    middle round the corner until the turn's end re-anchors the estimate
-    (measurements.md#round-trip-mark-error); a mark it passed falls due
-    once the estimate has passed it after."""
+    takes a corner no mark falls due: from when the estimate comes within
+    ``reach_mm`` (the robot's leading wheel reaching it) of one of
+    ``corners`` (:func:`corners_mm`) to the PAB's end, its wheels' odometry
+    runs ahead of the robot's middle round the corner until the turn's end
+    re-anchors the estimate (measurements.md#round-trip-mark-error); a mark
+    it passed then falls due once the estimate has passed it after. Before
+    the corner, and through a T-joint straight on, the estimate is the
+    straight pipe's and marks fall due as they are passed."""
 
-    def __init__(self, marks):
+    def __init__(self, marks, corners=(), reach_mm=0.0):
         self._left = list(marks)
+        self._corners = [(entry - reach_mm, exit_ + reach_mm) for entry, exit_ in corners]
         self._last = None
+        self._step = None
+        self._junction_pab = False
         self._holding = False
         self.leg = 'in'
 
-    def step(self, distance_mm, pab=''):
-        """The mission's running step is PAB ``pab`` with the signed distance ``distance_mm``."""
+    def step(self, distance_mm, pab='', number=None):
+        """The mission's running step (``number``) is PAB ``pab`` with the signed distance ``distance_mm``."""
         if distance_mm < 0:
             self.leg = 'back'
-        self._holding = pab in JUNCTION_PABS
+        if (number, pab, distance_mm) != self._step:
+            self._step = (number, pab, distance_mm)
+            self._junction_pab = pab in JUNCTION_PABS
+            self._holding = False
 
     def passed(self, along_mm):
         """The marks due now the estimate is at ``along_mm``, in the order passed."""
+        if self._junction_pab and not self._holding:
+            self._holding = any(low <= along_mm <= high for low, high in self._corners)
         if self._holding:
             return []
         last = along_mm if self._last is None else self._last

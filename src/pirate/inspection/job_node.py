@@ -27,6 +27,8 @@ from pirate.inspection import report, store
 from pirate.msg import MissionActionFeedback
 from pirate.srv import InspectionMark
 from pirate.supervisory import route_client_ros
+from pirate.supervisory.plan_cli import load_settings
+from pirate.world import network
 
 DEFAULT_JOB = os.path.join(paths.CONFIG_DIR, 'jobs', 'inspection_demo.yaml')
 MARK_SERVICE_WAIT_S = 30.0
@@ -35,8 +37,8 @@ MARK_SERVICE_WAIT_S = 30.0
 class Marker(object):
     """Marks the job's findings as the mission's estimate passes them; prints each."""
 
-    def __init__(self, marks, out):
-        self._due = jobs.DueMarks(marks)
+    def __init__(self, due, out):
+        self._due = due
         self._out = out
         self.failed = []
         self._mark = rospy.ServiceProxy(names.INSPECTION_MARK_SERVICE, InspectionMark)
@@ -46,7 +48,7 @@ class Marker(object):
 
     def _on_step(self, msg):
         with self._lock:
-            self._due.step(msg.feedback.distance_mm, msg.feedback.pab)
+            self._due.step(msg.feedback.distance_mm, msg.feedback.pab, msg.feedback.step)
 
     def _on_along(self, msg):
         with self._lock:
@@ -83,7 +85,8 @@ def main(argv=None):
     args = parser.parse_args(rospy.myargv(argv or sys.argv)[1:])
     try:
         job = jobs.load(args.job)
-    except jobs.JobError as error:
+        pipe_map = network.load(network.world_path(job.map))
+    except (jobs.JobError, network.WorldError) as error:
         print('inspection_job: %s' % error, file=sys.stderr)
         return 2
     out = lambda line: print(line, flush=True)  # noqa: E731
@@ -94,7 +97,7 @@ def main(argv=None):
         print('inspection_job: no inspection node at %s (roslaunch pirate inspection.launch)'
               % names.INSPECTION_MARK_SERVICE, file=sys.stderr)
         return 2
-    marker = Marker(job.marks, out)
+    marker = Marker(jobs.due_marks(job.marks, pipe_map, load_settings()[0]['robot']), out)
     route = argparse.Namespace(route=[job.map] + job.points, speed=0.0, level='full', check=False, no_home=False)
     status = route_client_ros.run_route(route, out)
     for mark in marker.left():

@@ -13,7 +13,7 @@ import collections
 import statistics
 import threading
 
-from pirate.inspection.job import LEGS, DueMarks
+from pirate.inspection.job import LEGS
 
 #: Back at the route's last point within this (mm, ground truth): the run's verdict.
 ARRIVE_MM = 50.0
@@ -28,8 +28,8 @@ class MarkWatch(object):
     from the executive's progress, :meth:`check` and :meth:`record` between
     robot cycles (pirate.testing.harness.SimHarness.when)."""
 
-    def __init__(self, marks, estimate_mm, truth_mm):
-        self._due = DueMarks(marks)
+    def __init__(self, due, estimate_mm, truth_mm):
+        self._due = due
         self._estimate_mm, self._truth_mm = estimate_mm, truth_mm
         self._lock = threading.Lock()
         self._pending = []
@@ -39,7 +39,7 @@ class MarkWatch(object):
     def step(self, distance_mm, number=None, pab=''):
         """The mission's running step (``number``) is PAB ``pab`` with the signed distance ``distance_mm``."""
         with self._lock:
-            self._due.step(distance_mm, pab)
+            self._due.step(distance_mm, pab, number)
             self._step = number
 
     def check(self):
