@@ -216,7 +216,7 @@ def test_long_status_lines_are_wrapped_to_the_window_not_clipped(panel):
                           'confirm, about 212 s left, WAITING for confirmation of step 5 (MITRE_BEND RIGHT)')
     panel.draw(pygame.Surface((virtual.WIDTH, virtual.HEIGHT), 0, virtual.DEPTH_BITS))
     lines = panel.wrapped_status()
-    assert all(panel._font.size(line)[0] <= virtual.WIDTH - 28 for line in lines)   # pylint: disable=protected-access
+    assert all(panel._font.size(line)[0] <= virtual.PANEL_W - 28 for line in lines)   # pylint: disable=protected-access
     assert 'WAITING for confirmation of step 5 (MITRE_BEND RIGHT)' in ' '.join(lines)
 
 
@@ -234,3 +234,41 @@ def test_manual_mode_labels_what_each_slider_and_knob_moves(panel):
     plain = {tuple(surface.get_at((x, y)))[:3] for x in range(under.left, under.right)
              for y in range(under.top, under.bottom)}
     assert plain == {virtual.BODY}
+
+
+def _camera_centre(panel, camera):
+    """The colour drawn at the middle of ``camera``'s pane."""
+    surface = pygame.Surface((virtual.WIDTH, virtual.HEIGHT), 0, virtual.DEPTH_BITS)
+    panel.draw(surface)
+    return tuple(surface.get_at(panel.camera_rect(virtual.CAMERAS.index(camera)).center))[:3]
+
+
+@pytest.mark.parametrize('encoding, pixel, shown', [
+    ('rgb8', (200, 30, 10), (200, 30, 10)),
+    ('bgr8', (10, 30, 200), (200, 30, 10)),       # blue first on the wire: the same red
+    ('mono8', (90,), (90, 90, 90)),
+])
+def test_a_camera_image_is_shown_right_of_the_panel_in_its_colours(panel, encoding, pixel, shown):
+    width, height = 160, 120
+    step = width * len(pixel) + 2                 # rows padded: the step is what counts
+    row = bytes(pixel) * width + b'\0\0'
+    before = _camera_centre(panel, 'front')
+    panel.cameras['front'] = virtual.camera_surface(width, height, encoding, step, row * height)
+    assert _camera_centre(panel, 'front') == shown != before
+    assert _camera_centre(panel, 'rear') == before         # the other camera still has none
+
+
+@pytest.mark.parametrize('width, height, encoding, step, size, said', [
+    (160, 120, 'yuv422', 320, 320 * 120, 'a yuv422 image is not shown (rgb8, bgr8, mono8)'),
+    (160, 120, '', 480, 480 * 120, 'a no-encoding image is not shown'),
+    (160, 120, 'rgb8', 480, 480 * 119, 'needs 57600 bytes, not 57120'),
+    (160, 120, 'rgb8', 100, 480 * 120, 'rows of 100 bytes'),
+    (0, 120, 'rgb8', 480, 480 * 120, 'a 0 x 120 rgb8 image'),
+])
+def test_an_image_the_pane_cannot_show_says_why(panel, width, height, encoding, step, size, said):
+    with pytest.raises(ValueError) as refused:
+        virtual.camera_surface(width, height, encoding, step, bytes(size))
+    assert said in str(refused.value)
+    before = _camera_centre(panel, 'front')
+    panel.cameras['front'] = str(refused.value)          # what the node shows instead
+    assert _camera_centre(panel, 'front') == before      # the empty pane, with the reason in it

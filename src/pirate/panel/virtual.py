@@ -19,6 +19,8 @@ import collections
 import math
 import os
 
+import numpy
+
 os.environ.setdefault('PYGAME_HIDE_SUPPORT_PROMPT', '1')
 import pygame  # noqa: E402
 
@@ -45,7 +47,14 @@ OPERATION_MODE_BUTTON, PLAY_BUTTON = 43, 41
 #: Status lines: mode, PAB, the panel's word, the mission, the robot, each wrapped to the window.
 STATUS_LINES, STATUS_LINE_H = 7, 18
 STATUS_H = 10 + STATUS_LINES * STATUS_LINE_H
-WIDTH, HEIGHT = 940, STATUS_H + 300     # the controls, and the manual labels under the sliders
+PANEL_W, HEIGHT = 940, STATUS_H + 300   # the controls, and the manual labels under the sliders
+#: The cameras' pane right of the panel: each camera's newest image (160 x 120
+#: from the twin, scaled) under its name, front above rear.
+CAMERAS = ('front', 'rear')
+CAMERA_W, CAMERA_H, CAMERA_LABEL_H = 200, 150, 22
+WIDTH = PANEL_W + CAMERA_W + 24
+#: sensor_msgs/Image encodings the pane shows: bytes per pixel.
+IMAGE_ENCODINGS = {'rgb8': 3, 'bgr8': 3, 'mono8': 1}
 STRIP_W = 64      # px between two channel strips
 BODY, PANEL_EDGE, TEXT = (38, 38, 42), (90, 90, 96), (225, 225, 225)
 BUTTON_OFF, BUTTON_LIT, SLOT, THUMB = (70, 70, 76), (235, 40, 40), (15, 15, 15), (200, 200, 205)
@@ -63,6 +72,24 @@ WHEEL_BUTTONS = {4: 1, 5: -1}
 PAB_LIST_X, PAB_LIST_Y, PAB_LIST_COLUMN_W = 14, STATUS_H + 188, 212
 
 Control = collections.namedtuple('Control', 'kind channel label rect')
+
+
+def camera_surface(width, height, encoding, step, data):
+    """A pygame Surface of a sensor_msgs/Image's fields (rgb8, bgr8 or
+    mono8); ValueError saying what is wrong with any other."""
+    if encoding not in IMAGE_ENCODINGS:
+        raise ValueError('a %s image is not shown (%s)' % (encoding or 'no-encoding', ', '.join(IMAGE_ENCODINGS)))
+    channels = IMAGE_ENCODINGS[encoding]
+    if width <= 0 or height <= 0 or step < width * channels or len(data) < step * height:
+        raise ValueError('a %d x %d %s image with rows of %d bytes needs %d bytes, not %d'
+                         % (width, height, encoding, step, step * height, len(data)))
+    rows = numpy.frombuffer(bytes(data[:step * height]), numpy.uint8).reshape(height, step)
+    pixels = rows[:, :width * channels].reshape(height, width, channels)
+    if encoding == 'bgr8':
+        pixels = pixels[:, :, ::-1]
+    elif channels == 1:
+        pixels = numpy.repeat(pixels, 3, axis=2)
+    return pygame.image.fromstring(numpy.ascontiguousarray(pixels).tobytes(), (width, height), 'RGB')
 
 
 def _layout():
@@ -102,6 +129,7 @@ class VirtualPanel(object):
         self.mission_labels = {}    # channel -> its PAB-mode (mission) label (mission_buttons.labels)
         self.manual_labels = {}     # channel -> what a slider or knob moves in manual mode (status.control_labels)
         self.robot_text = ''        # joints, odometry, distance along the pipe, LEDs (status.robot_line)
+        self.cameras = {camera: 'no image yet' for camera in CAMERAS}   # a Surface, or why there is none
         self._dragging = None
         self._held = None
         self._font = None
@@ -215,15 +243,35 @@ class VirtualPanel(object):
             self._small_font = pygame.font.Font(None, 15)
         surface.fill(BODY)
         pygame.draw.rect(surface, PANEL_EDGE, surface.get_rect(), 3)
-        pygame.draw.line(surface, PANEL_EDGE, (0, STATUS_H), (WIDTH, STATUS_H), 2)
+        pygame.draw.line(surface, PANEL_EDGE, (0, STATUS_H), (PANEL_W, STATUS_H), 2)
+        pygame.draw.line(surface, PANEL_EDGE, (PANEL_W, 0), (PANEL_W, HEIGHT), 2)
         self._draw_status(surface)
         for control in self.controls:
             getattr(self, '_draw_' + control.kind)(surface, control)
         self._draw_pab_list(surface)
         self._draw_manual_labels(surface)
+        for i, camera in enumerate(CAMERAS):
+            self._draw_camera(surface, camera, self.camera_rect(i))
+
+    @staticmethod
+    def camera_rect(i):
+        """Where camera ``i`` of :data:`CAMERAS` is shown (screen px)."""
+        return pygame.Rect(PANEL_W + 12, 8 + CAMERA_LABEL_H + i * (CAMERA_H + CAMERA_LABEL_H + 12),
+                           CAMERA_W, CAMERA_H)
+
+    def _draw_camera(self, surface, camera, rect):
+        """The camera's newest image scaled into ``rect``, or why there is none."""
+        surface.blit(self._font.render('%s camera' % camera, True, TEXT), (rect.x, rect.y - CAMERA_LABEL_H + 4))
+        shown = self.cameras.get(camera)
+        if isinstance(shown, pygame.Surface):
+            surface.blit(pygame.transform.scale(shown, rect.size), rect.topleft)
+            return
+        pygame.draw.rect(surface, SLOT, rect)
+        for i, line in enumerate(wrap(str(shown), lambda text: self._small_font.size(text)[0] <= CAMERA_W - 8)[:4]):
+            surface.blit(self._small_font.render(line, True, TEXT), (rect.x + 4, rect.y + 4 + i * 12))
 
     def _fits_status(self, text):
-        return self._font.size(text)[0] <= WIDTH - 28
+        return self._font.size(text)[0] <= PANEL_W - 28
 
     def _draw_status(self, surface):
         for i, line in enumerate(self.wrapped_status()):

@@ -16,17 +16,21 @@ by pirate.panel.status (the server's own state from
 late feedback never overwrites a result; nothing stale after a manager
 restart), and the robot (joints, odometry, the mission's distance along the
 pipe, the LEDs) from ``names.ROBOT_STATE_TOPIC``, ``names.SETPOINT_TOPIC``
-and ``names.MISSION_ALONG_TOPIC``. In manual mode every slider and knob
+and ``names.MISSION_ALONG_TOPIC``; right of the panel, each camera's newest
+image (``names.CAMERA_NAMESPACES`` + ``/image_raw``, rgb8, bgr8 or mono8;
+"no image for N s" once they stop). In manual mode every slider and knob
 reads what it moves (the panel map's words). In PAB mode
 the M row reads its mission jobs (the panel map's ``mission_buttons``).
 
 Private params: ``~fps`` (redraw rate, default 30), ``~screenshot`` (path:
 save the window there once after the first LED arrives or after 2 s, for
-documentation), ``~panel_config`` (the panel map whose PAB buttons it lists,
-default config/nanokontrol2.yaml). Headless with ``SDL_VIDEODRIVER=dummy``.
+documentation), ``~screenshot_after`` (save it then instead: wall s after start), ``~panel_config`` (the panel map whose PAB buttons it lists,
+default config/nanokontrol2.yaml), ``~cameras`` (show the cameras' images,
+default true). Headless with ``SDL_VIDEODRIVER=dummy``.
 """
 import os
 import threading
+import time
 
 import pygame
 import rospy
@@ -35,6 +39,7 @@ from pirate import names, paths
 from pirate.msg import (MidiInput, MidiOutput, MissionActionFeedback, MissionActionGoal, MissionActionResult,
                         PirateActionFeedback, PirateActionGoal, PirateActionResult, RobotState, SetpointArray)
 from pirate.srv import ServerStatus
+from sensor_msgs.msg import Image
 from std_msgs.msg import Float64, String
 
 from pirate.panel import config, mission_buttons, status, virtual
@@ -48,6 +53,8 @@ from pirate.supervisory.plan_cli import load_settings
 PANEL_CONFIG = os.path.join(paths.CONFIG_DIR, 'nanokontrol2.yaml')
 #: Wall s between two asks of the server's state (and its wait for an answer).
 SERVER_ASK_S = 1.0
+#: Wall s without an image after which a camera's pane says so.
+IMAGE_STALE_S = 2.0
 #: actionlib_msgs/GoalStatus codes -> words for the operator.
 _TERMINAL = {2: 'preempted', 3: 'succeeded', 4: 'aborted', 5: 'rejected', 8: 'recalled'}
 
@@ -85,9 +92,15 @@ class VirtualPanelNode(object):
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state, queue_size=1)
         rospy.Subscriber(names.SETPOINT_TOPIC, SetpointArray, self._on_setpoints, queue_size=1)
         rospy.Subscriber(names.MISSION_ALONG_TOPIC, Float64, self._on_along, queue_size=1)
+        self._image_at = {}         # camera -> wall s (monotonic) of its newest image
+        if rospy.get_param('~cameras', True):
+            for camera in virtual.CAMERAS:
+                rospy.Subscriber(names.CAMERA_NAMESPACES[camera] + '/image_raw', Image, self._on_image, camera,
+                                 queue_size=1, buff_size=2 ** 20)
         threading.Thread(target=self._ask_server, name='server_status', daemon=True).start()
         self._fps = float(rospy.get_param('~fps', 30.0))
         self._screenshot = rospy.get_param('~screenshot', '')
+        self._screenshot_after = rospy.get_param('~screenshot_after', None)
 
     def _on_led(self, msg):
         with self._lock:
@@ -139,6 +152,22 @@ class VirtualPanelNode(object):
         with self._lock:
             self._leds = {part: msg.data[tables.element(part + '_led').index] for part in ('front', 'rear')}
 
+    def _on_image(self, msg, camera):
+        try:
+            shown = virtual.camera_surface(msg.width, msg.height, msg.encoding, msg.step, msg.data)
+        except ValueError as bad:
+            shown = str(bad)
+        with self._lock:
+            self.panel.cameras[camera] = shown
+            self._image_at[camera] = time.monotonic()
+
+    def _age_images(self):
+        """A camera whose images stopped says so rather than show its last one."""
+        now = time.monotonic()
+        for camera, at in self._image_at.items():
+            if now - at > IMAGE_STALE_S:
+                self.panel.cameras[camera] = 'no image for %.0f s' % (now - at)
+
     def _on_along(self, msg):
         with self._lock:
             self._along_mm = msg.data
@@ -173,7 +202,7 @@ class VirtualPanelNode(object):
             return
         pygame.display.set_caption('PIRATE panel (virtual nanoKONTROL2)')
         clock = pygame.time.Clock()
-        start = rospy.get_time()
+        start = time.monotonic()
         while not rospy.is_shutdown():
             for event in pygame.event.get():
                 if event.type == pygame.QUIT:
@@ -184,13 +213,20 @@ class VirtualPanelNode(object):
                 for channel, value in produced:
                     self._pub.publish(MidiInput(channel=channel, value=value))
             with self._lock:
+                self._age_images()
                 self.panel.draw(screen)
             pygame.display.flip()
-            if self._screenshot and (self.panel.leds or rospy.get_time() - start > 2.0):
+            if self._screenshot and self._screenshot_due(time.monotonic() - start):
                 pygame.image.save(screen, os.path.expanduser(self._screenshot))
                 rospy.loginfo('virtual panel: screenshot saved to %s', self._screenshot)
                 self._screenshot = ''
             clock.tick(self._fps)
+
+
+    def _screenshot_due(self, running_s):
+        if self._screenshot_after is not None:
+            return running_s >= float(self._screenshot_after)
+        return bool(self.panel.leds) or running_s > 2.0
 
 
 def feedback_text(fb):
