@@ -12,7 +12,6 @@ import collections
 import yaml
 
 from pirate.inspection import findings
-from pirate.sequencer.junctions import is_turn
 from pirate.supervisory import planner
 
 Job = collections.namedtuple('Job', 'map points marks')
@@ -64,7 +63,7 @@ def corners_mm(pipe_map):
     """(entry, exit) mm along ``pipe_map`` of each junction a route turns at
     (a bend, a T-joint's branch): round one the estimate runs ahead."""
     return [(junction.entry_m * 1000.0, junction.exit_m * 1000.0)
-            for junction in planner.junctions(pipe_map) if is_turn(junction.direction)]
+            for junction in planner.junctions(pipe_map) if planner.turns(junction)]
 
 
 def due_marks(marks, pipe_map, robot):

@@ -66,6 +66,11 @@ def junctions(network):
     return found
 
 
+def turns(junction):
+    """True when a route takes ``junction`` into a new pipe (a bend, a T-joint's branch), False straight on."""
+    return is_turn(junction.direction)
+
+
 def _crossing(piece):
     """(direction taken, open side, from_run) of a junction on the path: the
     same both ways in the robot's own frame (it drives back without turning
