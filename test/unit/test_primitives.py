@@ -151,6 +151,22 @@ def test_full_unclamp_front_uses_its_own_guards(rig):
     assert [feed.waits[0][1](s) for s in feed.states] == [False, True]
 
 
+@pytest.mark.parametrize('bend_iv, said', [
+    (+0.58, 'bend_iv stands at +0.58 rad, folded the other way from its guard -0.77: the V turned the wrong way'),
+    (-0.50, 'bend_iv presses the wall at -0.50 rad, short of its guard -0.77: the wall is nearer'),
+    (+0.20, 'bend_iv presses the wall at +0.20 rad, short of its guard -0.77'),    # under half: not "folded"
+])
+def test_a_clamp_that_timed_out_says_where_its_outer_bend_stood(rig, bend_iv, said):
+    """The abort says what happened: a V folded the wrong way round is not
+    short of the wall (twin: a T-joint LEFT at 18 mm/s, Bend IV at +0.58)."""
+    prims, feed, _ = rig
+    feed.outcome = TimedOut('clamp rear: not reached within 15.0 s')
+    feed.current = view(bend_iv=bend_iv, bend_iii=0.1)
+    with pytest.raises(TimedOut) as late:
+        prims.clamp('rear')
+    assert said in str(late.value)
+
+
 def stamped(stamp, efforts=None, **angles):
     return view(efforts, **angles)._replace(stamp=stamp)
 

@@ -254,18 +254,27 @@ class MotionPrimitives(object):
             self.setpoint.set(pair.inner.joint, 0)
 
     def _on_the_wall_short(self, pair):
-        """What a clamp that timed out stood on, when its outer spring presses
-        the wall short of its angle guard: the wall is nearer than this
-        diameter's guards expect (twin: a 110 mm Clamp Straight in a 90 mm pipe
-        stood at -1.02 rad, its guard -1.25, for the whole 15 s); else ''."""
+        """What a clamp that timed out stood on: its outer bend folded the
+        other way, past straight by more than half its guard (twin: a 90 mm
+        T-joint LEFT at 18 mm/s left Bend IV at +0.58 rad against its guard
+        -0.60: turned the wrong way round, not short); or its outer spring
+        pressing the wall short of its angle guard: the wall is nearer than
+        this diameter's guards expect (twin: a 110 mm Clamp Straight in a
+        90 mm pipe stood at -1.02 rad, its guard -1.25, for the whole 15 s);
+        else ''."""
         view = self.feed.latest()
         outer = pair.outer
-        if view is None or view.angles[outer.joint] <= outer.guard or not clamp_state.presses_wall(
-                self.guards, outer, view.efforts):
+        if view is None:
+            return ''
+        angle = view.angles[outer.joint]
+        if angle * outer.guard < 0 and abs(angle) > abs(outer.guard) / 2:
+            return ('; %s stands at %+.2f rad, folded the other way from its guard %+.2f: the V turned the wrong '
+                    'way round (it is not short of the wall)' % (outer.joint, angle, outer.guard))
+        if angle <= outer.guard or not clamp_state.presses_wall(self.guards, outer, view.efforts):
             return ''
         return ('; %s presses the wall at %+.2f rad, short of its guard %+.2f: the wall is nearer than the %d mm '
                 'guards expect (a narrower pipe than the goal says, or the part not lying where they assume)'
-                % (outer.joint, view.angles[outer.joint], outer.guard, self.guards.pipe_diameter))
+                % (outer.joint, angle, outer.guard, self.guards.pipe_diameter))
 
     def _bends_in_torque(self, pair):
         with self.writing():
