@@ -249,11 +249,11 @@ class MotionPrimitives(object):
                           lambda v: clamp_state.clamped(self.guards, pair, v.angles, v.efforts),
                           '%s and %s on the wall' % (pair.describe(True), pair.outer.joint))
         except TimedOut as late:
-            raise TimedOut('%s%s' % (late, self._on_the_wall_short(pair))) from late
+            raise TimedOut('%s%s' % (late, self._where_the_clamp_stood(pair))) from late
         with self.writing():
             self.setpoint.set(pair.inner.joint, 0)
 
-    def _on_the_wall_short(self, pair):
+    def _where_the_clamp_stood(self, pair):
         """What a clamp that timed out stood on: its outer bend folded the
         other way, past straight by more than half its guard (twin: a 90 mm
         T-joint LEFT at 18 mm/s left Bend IV at +0.58 rad against its guard
