@@ -24,7 +24,8 @@ the M row reads its mission jobs (the panel map's ``mission_buttons``).
 
 Private params: ``~fps`` (redraw rate, default 30), ``~screenshot`` (path:
 save the window there once after the first LED arrives or after 2 s, for
-documentation), ``~screenshot_after`` (save it then instead: wall s after start), ``~panel_config`` (the panel map whose PAB buttons it lists,
+documentation), ``~screenshot_after`` (save it then instead: wall s after
+start), ``~panel_config`` (the panel map whose PAB buttons it lists,
 default config/nanokontrol2.yaml), ``~cameras`` (show the cameras' images,
 default true). Headless with ``SDL_VIDEODRIVER=dummy``.
 """
@@ -221,7 +222,6 @@ class VirtualPanelNode(object):
                 rospy.loginfo('virtual panel: screenshot saved to %s', self._screenshot)
                 self._screenshot = ''
             clock.tick(self._fps)
-
 
     def _screenshot_due(self, running_s):
         if self._screenshot_after is not None:
