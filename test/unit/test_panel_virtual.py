@@ -8,6 +8,7 @@ import sys
 os.environ.setdefault('SDL_VIDEODRIVER', 'dummy')
 os.environ.setdefault('PYGAME_HIDE_SUPPORT_PROMPT', '1')
 
+import numpy  # noqa: E402
 import pygame  # noqa: E402
 import pytest  # noqa: E402
 
@@ -272,3 +273,15 @@ def test_an_image_the_pane_cannot_show_says_why(panel, width, height, encoding, 
     before = _camera_centre(panel, 'front')
     panel.cameras['front'] = str(refused.value)          # what the node shows instead
     assert _camera_centre(panel, 'front') == before      # the empty pane, with the reason in it
+
+
+def test_a_large_image_is_sampled_down_to_no_less_than_the_pane():
+    """A lab grabber's 1920 x 1080 frame: every 7th pixel each way (1080 / 150),
+    still at least the pane's size, each sampled pixel where it was."""
+    width, height = 1920, 1080
+    x, y = numpy.meshgrid(numpy.arange(width), numpy.arange(height))
+    pixels = numpy.dstack([x % 256, y % 256, (x // 256) * 16]).astype(numpy.uint8)
+    surface = virtual.camera_surface(width, height, 'rgb8', width * 3, pixels.tobytes())
+    assert surface.get_size() == (275, 155)
+    assert surface.get_width() >= virtual.CAMERA_W and surface.get_height() >= virtual.CAMERA_H
+    assert tuple(surface.get_at((100, 50)))[:3] == tuple(pixels[350, 700])

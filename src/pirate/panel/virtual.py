@@ -76,20 +76,23 @@ Control = collections.namedtuple('Control', 'kind channel label rect')
 
 def camera_surface(width, height, encoding, step, data):
     """A pygame Surface of a sensor_msgs/Image's fields (rgb8, bgr8 or
-    mono8); ValueError saying what is wrong with any other."""
+    mono8), every k-th pixel of an image k or more times the pane's size
+    each way (a grabber's 1920 x 1080: 9 x 7 fewer pixels to convert);
+    ValueError saying what is wrong with any other."""
     if encoding not in IMAGE_ENCODINGS:
         raise ValueError('a %s image is not shown (%s)' % (encoding or 'no-encoding', ', '.join(IMAGE_ENCODINGS)))
     channels = IMAGE_ENCODINGS[encoding]
     if width <= 0 or height <= 0 or step < width * channels or len(data) < step * height:
         raise ValueError('a %d x %d %s image with rows of %d bytes needs %d bytes, not %d'
                          % (width, height, encoding, step, step * height, len(data)))
+    every = max(1, min(width // CAMERA_W, height // CAMERA_H))
     rows = numpy.frombuffer(bytes(data[:step * height]), numpy.uint8).reshape(height, step)
-    pixels = rows[:, :width * channels].reshape(height, width, channels)
+    pixels = rows[::every, :width * channels].reshape(-1, width, channels)[:, ::every]
     if encoding == 'bgr8':
         pixels = pixels[:, :, ::-1]
     elif channels == 1:
         pixels = numpy.repeat(pixels, 3, axis=2)
-    return pygame.image.fromstring(numpy.ascontiguousarray(pixels).tobytes(), (width, height), 'RGB')
+    return pygame.image.fromstring(numpy.ascontiguousarray(pixels).tobytes(), pixels.shape[1::-1], 'RGB')
 
 
 def _layout():

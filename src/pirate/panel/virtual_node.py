@@ -56,6 +56,8 @@ PANEL_CONFIG = os.path.join(paths.CONFIG_DIR, 'nanokontrol2.yaml')
 SERVER_ASK_S = 1.0
 #: Wall s without an image after which a camera's pane says so.
 IMAGE_STALE_S = 2.0
+#: Wall s between two images shown per camera: the twin's rate (10 Hz).
+IMAGE_EVERY_S = 0.1
 #: actionlib_msgs/GoalStatus codes -> words for the operator.
 _TERMINAL = {2: 'preempted', 3: 'succeeded', 4: 'aborted', 5: 'rejected', 8: 'recalled'}
 
@@ -93,7 +95,8 @@ class VirtualPanelNode(object):
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state, queue_size=1)
         rospy.Subscriber(names.SETPOINT_TOPIC, SetpointArray, self._on_setpoints, queue_size=1)
         rospy.Subscriber(names.MISSION_ALONG_TOPIC, Float64, self._on_along, queue_size=1)
-        self._image_at = {}         # camera -> wall s (monotonic) of its newest image
+        self._images, self._image_at = {}, {}   # camera -> its newest image not shown yet; wall s it came
+        self._shown_at = {}         # camera -> wall s its pane was last converted
         if rospy.get_param('~cameras', True):
             for camera in virtual.CAMERAS:
                 rospy.Subscriber(names.CAMERA_NAMESPACES[camera] + '/image_raw', Image, self._on_image, camera,
@@ -154,18 +157,26 @@ class VirtualPanelNode(object):
             self._leds = {part: msg.data[tables.element(part + '_led').index] for part in ('front', 'rear')}
 
     def _on_image(self, msg, camera):
-        try:
-            shown = virtual.camera_surface(msg.width, msg.height, msg.encoding, msg.step, msg.data)
-        except ValueError as bad:
-            shown = str(bad)
         with self._lock:
-            self.panel.cameras[camera] = shown
+            self._images[camera] = msg
             self._image_at[camera] = time.monotonic()
 
-    def _age_images(self):
-        """A camera whose images stopped says so rather than show its last one."""
+    def _show_images(self):
+        """Each camera's newest image, converted here at most every
+        IMAGE_EVERY_S (a grabber may send 30 large frames a second); a camera
+        whose images stopped says so rather than show its last one."""
         now = time.monotonic()
         for camera, at in self._image_at.items():
+            msg = self._images.pop(camera, None)
+            if msg is not None and now - self._shown_at.get(camera, -IMAGE_EVERY_S) >= IMAGE_EVERY_S:
+                try:
+                    self.panel.cameras[camera] = virtual.camera_surface(msg.width, msg.height, msg.encoding,
+                                                                        msg.step, msg.data)
+                except ValueError as bad:
+                    self.panel.cameras[camera] = str(bad)
+                self._shown_at[camera] = now
+            elif msg is not None:
+                self._images[camera] = msg      # shown at the next turn
             if now - at > IMAGE_STALE_S:
                 self.panel.cameras[camera] = 'no image for %.0f s' % (now - at)
 
@@ -214,7 +225,7 @@ class VirtualPanelNode(object):
                 for channel, value in produced:
                     self._pub.publish(MidiInput(channel=channel, value=value))
             with self._lock:
-                self._age_images()
+                self._show_images()
                 self.panel.draw(screen)
             pygame.display.flip()
             if self._screenshot and self._screenshot_due(time.monotonic() - start):
