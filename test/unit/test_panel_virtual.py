@@ -109,17 +109,12 @@ pygame.image.save(screen, sys.argv[1])
 '''
 
 
-@pytest.mark.skipif(shutil.which('Xvfb') is None, reason='Xvfb is not installed')
-def test_screenshot_under_xvfb_shows_the_panel():
-    out_dir = os.path.join(ROOT, 'test-results')
-    os.makedirs(out_dir, exist_ok=True)
-    path = os.path.join(out_dir, 'virtual_panel.png')
-    if os.path.exists(path):
-        os.remove(path)
+def _shoot_under_xvfb(path):
+    """Run SHOT on a fresh Xvfb; the finished process (None: no X server to open)."""
     # Xvfb picks a free display and writes its number to the pipe once it
     # accepts clients (its socket file appears earlier: SDL 1.2 came too soon).
     ready, write_end = os.pipe()
-    xvfb = subprocess.Popen(['Xvfb', '-displayfd', str(write_end), '-screen', '0', '1024x768x24', '-nolisten', 'tcp'],
+    xvfb = subprocess.Popen(['Xvfb', '-displayfd', str(write_end), '-screen', '0', '1280x768x24', '-nolisten', 'tcp'],
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, pass_fds=(write_end,))
     os.close(write_end)
     try:
@@ -129,11 +124,30 @@ def test_screenshot_under_xvfb_shows_the_panel():
         env = dict(os.environ, DISPLAY=':%s' % display, SDL_VIDEODRIVER='x11')
         run = subprocess.run([sys.executable, '-c', SHOT, path], env=env, timeout=30,
                              capture_output=True, text=True)
-        assert run.returncode == 0, run.stderr
-        assert 'x11' in run.stdout
     finally:
         xvfb.terminate()
         xvfb.wait(timeout=10)
+    return None if "Couldn't open X11 display" in run.stderr else run
+
+
+@pytest.mark.skipif(shutil.which('Xvfb') is None, reason='Xvfb is not installed')
+def test_screenshot_under_xvfb_shows_the_panel():
+    """Beside another test tier's Xvfb (make test runs two at once) the
+    client once could not open the display it was given: a fresh Xvfb,
+    up to three, is asked for then."""
+    out_dir = os.path.join(ROOT, 'test-results')
+    os.makedirs(out_dir, exist_ok=True)
+    path = os.path.join(out_dir, 'virtual_panel.png')
+    if os.path.exists(path):
+        os.remove(path)
+    run = None
+    for _ in range(3):
+        run = _shoot_under_xvfb(path)
+        if run is not None:
+            break
+    assert run is not None, 'no Xvfb display could be opened, three tries'
+    assert run.returncode == 0, run.stderr
+    assert 'x11' in run.stdout
     image = pygame.image.load(path)
     assert image.get_size() == (virtual.WIDTH, virtual.HEIGHT)
     panel = virtual.VirtualPanel()
