@@ -32,7 +32,7 @@ from std_msgs.msg import String
 import ready
 from pirate import names
 from pirate.msg import (MidiInput, MidiOutput, MissionAction, MissionActionFeedback, MissionGoal,
-                        PirateActionFeedback, PirateActionResult, RobotState)
+                        PirateActionFeedback, PirateActionGoal, PirateActionResult, RobotState)
 from pirate.sequencer import clamp_state
 from pirate.sequencer.guards import Guards, load_files
 from pirate.state.assembler import STALE_AFTER_S
@@ -66,9 +66,11 @@ class OperatorBusy(unittest.TestCase):
                                      queue_size=100),
                     rospy.Subscriber(names.MISSION_ACTION + '/feedback', MissionActionFeedback, cls._on_mission,
                                      queue_size=100),
+                    rospy.Subscriber(names.PIRATE_ACTION + '/goal', PirateActionGoal, cls._on_pab_goal,
+                                     queue_size=100),
                     rospy.Subscriber(names.PIRATE_ACTION + '/feedback', PirateActionFeedback, cls._on_pab,
                                      queue_size=100)]
-        cls.mission, cls.pab_feedbacks = None, 0
+        cls.mission, cls.pab_goals, cls.running_goals = None, [], set()   # PAB goal ids sent; with feedback
         cls.panel = rospy.Publisher(names.MIDI_INPUT_TOPIC, MidiInput, queue_size=10)
         ready.wait_until(lambda: all(ear.get_num_connections() for ear in cls.ears),
                          'our subscribers to connect', START_S)
@@ -108,9 +110,15 @@ class OperatorBusy(unittest.TestCase):
             cls.cond.notify_all()
 
     @classmethod
-    def _on_pab(cls, _msg):
+    def _on_pab_goal(cls, msg):
         with cls.cond:
-            cls.pab_feedbacks += 1
+            cls.pab_goals.append(msg.goal_id.id)
+            cls.cond.notify_all()
+
+    @classmethod
+    def _on_pab(cls, msg):
+        with cls.cond:
+            cls.running_goals.add(msg.status.goal_id.id)
             cls.cond.notify_all()
 
     @classmethod
@@ -223,9 +231,12 @@ class OperatorBusy(unittest.TestCase):
 
     def test_3_stop_on_the_panel_ends_a_mission(self):
         with self.cond:
-            pab_results, pab_feedbacks = len(self.results), self.pab_feedbacks
+            pab_results, pab_goals = len(self.results), len(self.pab_goals)
         client, ended = self.send_mission(list(reversed(rospy.get_param('~points'))), 'full')
-        self.wait(lambda: self.pab_feedbacks > pab_feedbacks, MISSION_S, 'the way back\'s first PAB to run')
+        # a PAB of this mission runs: feedback of a goal sent after it (a late
+        # feedback of the mission before does not count)
+        self.wait(lambda: self.running_goals.intersection(self.pab_goals[pab_goals:]), MISSION_S,
+                  'the way back\'s first PAB to run')
         self.press(STOP)
         self.assertTrue(ended.wait(PAB_S), 'the mission did not end after Stop')
         result = client.get_result()
