@@ -153,3 +153,25 @@ def test_limits(arrays):
     assert limit.get_all() == [1, 2, 3, 4]
     with pytest.raises(safety.Refused):
         limit.set_all([1, 2, 3])
+
+
+def test_the_lights_stay_on_through_the_safe_hold(arrays):
+    """An inspection lights the pipe for its frames (pirate_manager ~lights):
+    both LEDs at the duty, and the safe hold, which stops every motor,
+    leaves them lit."""
+    from pirate.robot.hold import safe_hold
+    setpoint, control, limit, pubs, _ = arrays
+    commands.play(control, setpoint, limit)
+    commands.light(control, setpoint, 200)
+    assert [setpoint.get(led) for led in commands.LEDS] == [200, 200]
+    safe_hold(setpoint, control)
+    sent = pubs['setpoint'].sent[-1]
+    assert [sent[tables.element(led).index] for led in commands.LEDS] == [200, 200]
+
+
+@pytest.mark.parametrize('duty', [-1, safety.DUTY_MAX + 1, 12.5, '200', True, None])
+def test_a_lights_duty_that_is_not_counts_is_refused(arrays, duty):
+    setpoint, control, _, _, _ = arrays
+    with pytest.raises(ValueError, match='LED duty .*: a whole number of counts from 0 to %d' % safety.DUTY_MAX):
+        commands.light(control, setpoint, duty)
+    assert [setpoint.get(led) for led in commands.LEDS] == [0, 0]

@@ -134,6 +134,10 @@ class PirateManager(object):
             rospy.Publisher(names.LIMITS_TOPIC, LimitArray, queue_size=1),
             lambda data: LimitArray(data=data), log=log)
         book = GuardBook(rospy.get_param('~guards'), rospy.get_param('~sequencer'))
+        try:    # the LEDs' duty while goals run; 0: left to the panel's knobs
+            self._lights = commands.lights_duty(rospy.get_param('~lights', 0))
+        except ValueError as bad:
+            raise BadConfig('~lights: %s' % bad)
         self.feed = RobotFeed(book.common['feedback_timeout'], wall_factor=book.common['wall_timeout_factor'],
                               robot_clock=silence_clock())
         self.setpoint.measured = self._measured_angles   # Play holds position joints where they are
@@ -289,8 +293,10 @@ class PirateManager(object):
             self.panel.mapper.stop_stalled(motor, why)
 
     def _start_robot(self):
-        """A goal is a request to move: PLAY and start the 10 Hz arrays."""
+        """A goal is a request to move: PLAY and start the 10 Hz arrays (the LEDs at ``~lights``, if set)."""
         commands.play(self.control, self.setpoint, self.limit)
+        if self._lights:
+            commands.light(self.control, self.setpoint, self._lights)
 
     # --- action side ------------------------------------------------------
     def _on_goal(self, handle):
@@ -450,7 +456,7 @@ def main():
     try:
         manager = PirateManager()
     except BadConfig as bad:        # a bad safety setting: refuse to start, say which
-        rospy.logfatal('pirate_manager not started: %s (config/sequencer.yaml)', bad)
+        rospy.logfatal('pirate_manager not started: %s (config/sequencer.yaml, the launch)', bad)
         rospy.signal_shutdown(str(bad))
         sys.exit(2)
     signal.signal(signal.SIGINT, manager.shutdown)

@@ -250,6 +250,24 @@ def play(control, setpoint, limit):
         setpoint.enabled = limit.enabled = True
 
 
+#: The LEDs that light the pipe for the cameras (report 2.4.1): front and rear.
+LEDS = ('front_led', 'rear_led')
+
+
+def lights_duty(duty):
+    """``duty`` (PWM counts, 0 to DUTY_MAX) as the LEDs' setpoint; ValueError saying why not."""
+    if isinstance(duty, bool) or not isinstance(duty, int) or not 0 <= duty <= safety.DUTY_MAX:
+        raise ValueError('LED duty %r: a whole number of counts from 0 to %d' % (duty, safety.DUTY_MAX))
+    return duty
+
+
+def light(control, setpoint, duty):
+    """Both LEDs at ``duty`` (:func:`lights_duty`); the safe hold leaves them so."""
+    with control.wire_lock:
+        for led in LEDS:
+            setpoint.set(led, lights_duty(duty))
+
+
 def hold_measured(control, setpoint, angles):
     """Setpoint = measured angle for every position-mode joint that has a sensor."""
     elements = {e.name for e in tables.SETPOINT_ELEMENTS}
