@@ -44,7 +44,7 @@ from sensor_msgs.msg import Image
 from std_msgs.msg import Float64, String
 
 from pirate.panel import config, mission_buttons, status, virtual
-from pirate.robot import tables
+from pirate.robot import commands, tables
 from pirate.sequencer import goals
 from pirate.supervisory import durations
 from pirate.sequencer.guards import load_files
@@ -154,7 +154,7 @@ class VirtualPanelNode(object):
 
     def _on_setpoints(self, msg):
         with self._lock:
-            self._leds = {part: msg.data[tables.element(part + '_led').index] for part in ('front', 'rear')}
+            self._leds = {led.split('_')[0]: msg.data[tables.element(led).index] for led in commands.LEDS}
 
     def _on_image(self, msg, camera):
         with self._lock:
@@ -167,16 +167,14 @@ class VirtualPanelNode(object):
         whose images stopped says so rather than show its last one."""
         now = time.monotonic()
         for camera, at in self._image_at.items():
-            msg = self._images.pop(camera, None)
-            if msg is not None and now - self._shown_at.get(camera, -IMAGE_EVERY_S) >= IMAGE_EVERY_S:
+            if camera in self._images and now - self._shown_at.get(camera, -IMAGE_EVERY_S) >= IMAGE_EVERY_S:
+                msg = self._images.pop(camera)
                 try:
                     self.panel.cameras[camera] = virtual.camera_surface(msg.width, msg.height, msg.encoding,
                                                                         msg.step, msg.data)
                 except ValueError as bad:
                     self.panel.cameras[camera] = str(bad)
                 self._shown_at[camera] = now
-            elif msg is not None:
-                self._images[camera] = msg      # shown at the next turn
             if now - at > IMAGE_STALE_S:
                 self.panel.cameras[camera] = 'no image for %.0f s' % (now - at)
 
