@@ -16,7 +16,9 @@ and the robot's state reads ``~ends``. Then the way back (``~points``
 reversed): Stop on the panel while its first PAB runs cancels that PAB
 and the mission, no PAB runs after it and the robot stands. All along, no
 ``/pirate/state`` says stale and none comes later than the stale limit of
-robot time after the one before. Waits on conditions, never on sleeps;
+robot time after the one before, from when the stack is ready (the
+simulator runs free until the manager acknowledges its first state,
+doc/clock.md). Waits on conditions, never on sleeps;
 timeouts are wall seconds, generous for a machine loaded to four
 processes per core.
 """
@@ -78,6 +80,8 @@ class OperatorBusy(unittest.TestCase):
         ready.wait_until(lambda: cls.panel.get_num_connections(), 'the Mapper to hear our panel', START_S)
         ready.wait_until(lambda: PLAY in cls.leds, 'the Mapper to send its LEDs', START_S)
         ready.wait_panel_goals_connected(START_S)
+        with cls.cond:
+            cls.gaps = []           # lockstep starts at the manager's first state: judge from its readiness
 
     # --- recorders ---------------------------------------------------------------
     @classmethod

@@ -429,6 +429,20 @@ def test_a_board_going_silent_on_a_lossy_bus_is_still_noticed():
     assert 10.0 <= noticed <= 10.0 + 1.0
 
 
+def test_a_clock_that_stands_for_cycles_reads_no_loss_and_no_silence():
+    """Simulated time read by a descheduled node stands still while cycles
+    arrive: one reply after the other at the same instant. That is no
+    information about the cycle; the assembler divided by a cycle of 0 and
+    dropped every Small State after it (no state for 0.86 robot s)."""
+    assembler = StateAssembler()
+    arrivals = [cycle * 0.1 for cycle in range(10)] + [1.0] * 30 + [1.0 + cycle * 0.1 for cycle in range(1, 20)]
+    stream = [(at, board) for at in arrivals for board in tables.BOARDS]
+    snaps = list(_feed(assembler, stream))
+    assert len(snaps) == len(stream)
+    assert assembler.snapshot(snaps[-1][0]).stale is False
+    assert max(assembler.loss().values()) == 0.0
+
+
 def test_a_clamp_straight_succeeds_with_ten_percent_loss_and_jitter():
     """In the twin every goal aborted "board N silent" under 10 % loss."""
     with SimHarness() as h:

@@ -188,7 +188,8 @@ class ReplyHistory(object):
         if last is None:
             return
         gap = now - last
-        self._gaps.append(gap)
+        if gap > 0:                     # none: the clock did not move (a simulated one, lagging), no cycle
+            self._gaps.append(gap)
         if len(self._gaps) >= 10:
             self._cycle = statistics.median(self._gaps)
         cycles = max(1, int(round(gap / self._cycle)))

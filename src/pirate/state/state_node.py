@@ -20,8 +20,8 @@ from pirate import health, names
 from pirate.robot import safety, tables
 from pirate.msg import ControlArray, RobotState, SetpointArray, SmallState
 from pirate.srv import ImuSensor, ImuSensorResponse, JointSensors, JointSensorsResponse
-from pirate.state.assembler import BadState, StateAssembler, stale_reason
-from pirate.state.clock_ros import silence_clock
+from pirate.state.assembler import CYCLE_S, BadState, StateAssembler, stale_reason
+from pirate.state.clock_ros import CATCH_UP_BOUND_S, catch_up, silence_clock
 
 
 def roll_quaternion(orientation):
@@ -40,6 +40,8 @@ class PirateStateNode(object):
     def __init__(self):
         self.assembler = StateAssembler(rospy.get_param('~stale_after', 0.3))
         self._clock = silence_clock()
+        self._sim_time = rospy.get_param('/use_sim_time', False)
+        self._cycle_end_s = None        # simulated time of the cycle last ended at its last board
         self._lock = threading.Lock()
         self._logged = set()
         self._was_stale = False
@@ -71,12 +73,14 @@ class PirateStateNode(object):
             return self.assembler.snapshot(self._clock())
 
     def _on_small_state(self, msg):
-        now = self._clock()
+        now = self._arrival()
         if not now:     # simulated time before this node's first /clock: no arrival time to judge silence by
             return
         try:
             with self._lock:
                 complete = self.assembler.update(msg.board, msg.data, now)
+            if complete and self._sim_time and msg.board == tables.BOARDS[-1]:
+                self._cycle_end_s = now
         except BadState as bad:
             if str(bad) not in self._logged:
                 self._logged.add(str(bad))
@@ -88,6 +92,21 @@ class PirateStateNode(object):
                 rospy.logwarn('pirate_state: %s; state is stale', stale_reason(snap.silent, snap.age))
             self._was_stale = snap.stale
             self._publish(snap)
+
+    def _arrival(self):
+        """When a Small State arrived. Simulated time: the first of a cycle
+        waits until this node's clock reached the cycle (more than half a
+        Mega cycle after the last ended; the simulator sent that /clock
+        first), so a state is stamped in its cycle's time, not a lagging
+        clock's (measurements.md#lockstep-stamp-lag)."""
+        if self._cycle_end_s is None:
+            return self._clock()
+        until_s, self._cycle_end_s = self._cycle_end_s + CYCLE_S / 2, None
+        now = catch_up(until_s)
+        if now < until_s:
+            rospy.logwarn_throttle(10.0, 'pirate_state: /clock did not pass %.2f s within %.1f s of a new cycle '
+                                   '(it reads %.2f s): stamped with it', until_s, CATCH_UP_BOUND_S, now)
+        return now
 
     def _on_sent(self, msg, which):
         """An array sent to the robot: the camera pan (no encoder) moves by it."""
