@@ -48,6 +48,7 @@ def render():
               '#define CONTROL_SIZE %d' % tables.CONTROL_SIZE,
               '#define LIMIT_SIZE %d' % tables.LIMIT_SIZE,
               '#define SMALL_STATE_SIZE %d' % tables.SMALL_STATE_SIZE,
+              '#define SMALL_STATE_NO_ANSWER 0x%02X' % tables.NO_ANSWER,
               '#define BOARD_COUNT %d' % len(tables.BOARDS),
               '#define NO_ELEMENT %d' % pico_bus.NO_ELEMENT,
               '#define CONTROL_CODE_MAX %d' % max(safety.CODE_NAMES),

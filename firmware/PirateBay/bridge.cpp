@@ -133,17 +133,24 @@ void Bridge::on_bus_byte(uint8_t b, uint32_t now) {
   waiting_ = false;
   on_reply(next_row_);
   ++next_row_;
+  if (publish_state(reply_.addr(), true)) ++counters.states;
+}
+
+// One Small State: the board's reply, or (not answered) the board +
+// SMALL_STATE_NO_ANSWER with all data 0.
+bool Bridge::publish_state(uint8_t board, bool answered) {
   uint8_t msg[1 + 2 * SMALL_STATE_SIZE];
-  msg[0] = reply_.addr();
+  msg[0] = answered ? board : (uint8_t)(board | SMALL_STATE_NO_ANSWER);
   for (uint8_t i = 0; i < SMALL_STATE_SIZE; ++i) {
-    uint16_t v = (uint16_t)reply_.data(i);
+    uint16_t v = answered ? (uint16_t)reply_.data(i) : 0;
     msg[1 + 2 * i] = v & 0xFF;
     msg[2 + 2 * i] = v >> 8;
   }
-  if (ros_ && ros_->publish(TOPIC_SMALL_STATE_ID, msg, sizeof msg)) ++counters.states;
+  return ros_ && ros_->publish(TOPIC_SMALL_STATE_ID, msg, sizeof msg);
 }
 
 void Bridge::on_missed_reply(uint8_t row) {
+  if (publish_state(kBoards[row].board, false)) ++counters.no_answers;
   if (missed_[row] < 255) ++missed_[row];
   if (missed_[row] >= BOARD_SILENT_AFTER && !reported_silent_[row] &&
       report(ROS_LOG_WARN, row, "not answering")) {

@@ -18,6 +18,9 @@
 //   newest arrives last) and kept through trips and renegotiations;
 // - every array is length-checked, every control code range-checked; a bad
 //   message is dropped whole and counted, the previous values stay;
+// - a board that does not answer a request is published in its place as a
+//   Small State of board + SMALL_STATE_NO_ANSWER with all data 0, so the
+//   laptop tells a silent board from a Small State the link lost;
 // - a board that misses BOARD_SILENT_AFTER replies in a row is reported
 //   once per episode as a rosserial WARN log naming it, and its return as
 //   INFO.
@@ -43,7 +46,7 @@
 
 struct BridgeCounters {
   uint16_t setpoints, controls, limits, rejected, watchdog_trips, stops_sent,
-      bus_timeouts, states, stale_setpoints, silent_reports;
+      bus_timeouts, states, no_answers, stale_setpoints, silent_reports;
 };
 
 class Bridge : public RosHandler {
@@ -67,6 +70,7 @@ class Bridge : public RosHandler {
   void request(uint8_t row, uint32_t now);
   void on_missed_reply(uint8_t row);
   void on_reply(uint8_t row);
+  bool publish_state(uint8_t board, bool answered);
   bool report(uint8_t level, uint8_t row, const char *what);
 
   RosserialDevice *ros_;

@@ -34,6 +34,7 @@
 #define CONTROL_SIZE 12
 #define LIMIT_SIZE 4
 #define SMALL_STATE_SIZE 9
+#define SMALL_STATE_NO_ANSWER 0x80
 #define BOARD_COUNT 9
 #define NO_ELEMENT -1
 #define CONTROL_CODE_MAX 10

@@ -354,6 +354,35 @@ static void test_silent_board_reported_once_per_episode() {
   CHECK(r.logs(ROS_LOG_WARN).size() == 2);
 }
 
+// A board that does not answer is published in its place, data 0, every
+// cycle: the laptop tells it from a Small State the link lost.
+static void test_unanswered_board_published_with_the_no_answer_mark() {
+  Rig r;
+  r.arm();
+  r.run(300);
+  r.boards.muted = 27;
+  size_t before = r.link_frames().size();
+  for (int i = 0; i < 5; ++i) {
+    r.setpoints(kSetpoints);
+    r.run(100);
+  }
+  int marked = 0, of_27 = 0, others = 0;
+  auto frames = r.link_frames();
+  for (size_t k = before; k < frames.size(); ++k) {
+    const std::vector<uint8_t> &p = frames[k].second;
+    if (frames[k].first != TOPIC_SMALL_STATE_ID || p.size() != 19) continue;
+    bool zeros = true;
+    for (size_t i = 1; i < p.size(); ++i) zeros = zeros && p[i] == 0;
+    if (p[0] == (27 | SMALL_STATE_NO_ANSWER) && zeros) ++marked;
+    else if (p[0] == 27) ++of_27;
+    else if (p[0] >= 20 && p[0] <= 28) ++others;
+  }
+  CHECK(marked >= 4 && marked <= 6);
+  CHECK(of_27 == 0);
+  CHECK(others >= 8 * 4);
+  CHECK(r.bay.bridge.counters.no_answers == (uint16_t)marked);
+}
+
 static void test_bus_crc_and_layout_match_python() {
   // CRC-8/SMBUS check value, as test/unit/test_firmware_bus.py asserts for Python.
   CHECK(bus_crc8((const uint8_t *)"123456789", 9) == 0xF4);
@@ -377,6 +406,7 @@ int main() {
   test_modes_and_limits_forwarded();
   test_tx_stop_and_silence_disarm();
   test_silent_board_reported_once_per_episode();
+  test_unanswered_board_published_with_the_no_answer_mark();
   printf("firmware unit: %d passed, %d failed\n", passed, failed);
   return failed ? 1 : 0;
 }

@@ -3,8 +3,9 @@
 
 The test node is the relay between the simulated robot
 (``/pirate/Small_State_raw``) and the state node (``/pirate/Small_State``);
-it drops every message of the board it silences, as the Mega does with a
-board that stops answering. Every wait is on a condition with a wall-clock
+it puts the Mega's word in place of every message of the board it
+silences (the board + NO_ANSWER, data 0), as the Mega does with a board
+that stops answering. Every wait is on a condition with a wall-clock
 deadline.
 """
 import unittest
@@ -15,6 +16,7 @@ from actionlib_msgs.msg import GoalStatus
 
 from pirate import names
 from pirate.msg import ControlArray, PirateAction, PirateGoal, RobotState, SetpointArray, SmallState
+from pirate.robot import tables
 from pirate.supervisory.goal_client_ros import SimpleGoalClient
 
 from ready import wait_hold_on_wire, wait_robot_connected, wait_until
@@ -41,8 +43,9 @@ class SilentBoardTest(unittest.TestCase):
 
     @classmethod
     def _relay(cls, msg):
-        if msg.board not in cls.silent:
-            cls.relay.publish(msg)
+        if msg.board in cls.silent:
+            msg = SmallState(board=msg.board | tables.NO_ANSWER, data=[0] * tables.SMALL_STATE_SIZE)
+        cls.relay.publish(msg)
 
     def _send(self, goal):
         self.feedback = []

@@ -119,6 +119,10 @@ SS_ANGLE = 3         # joint angle, counts (boards 20-24, 26-28; 25: rotation)
 SS_BEND_LOAD = 4     # spring deflection, spring-encoder counts
 SS_TORQUE = 5        # torque controller output, -256..256
 SMALL_STATE_SIZE = 9
+#: Added to a Small State's board by the Mega when that board did not answer
+#: its request this cycle (the data are then 0): a board gone silent, told
+#: apart from a reply lost on the way to the laptop.
+NO_ANSWER = 0x80
 
 #: Board 25 carries the IMU (SPEC 2 follows Table B.1, not Table 2.1's board
 #: 24): gravity vector X, Y, Z and angular rates U, V, W in elements 4-9.

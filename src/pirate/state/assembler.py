@@ -10,12 +10,13 @@ wrong length, or with any element outside what its sensor can produce
 (angle, rotation, wheel speed, drive duty, gravity) is dropped whole, with a
 reason the node logs once; the previous values stay.
 
-Freshness per board: the Mega skips a board that does not
-answer, so the newest message of *any* board says nothing about board 22.
-A board is silent when its replies stop, not when one or two are lost
-(:class:`ReplyHistory`): on a clean bus ``stale_after`` without an expected
-reply; on a lossy one as many missed cycles as its own loss rate makes
-unlikely. A silent board (or one never heard while others are) makes the
+Freshness per board: the newest message of *any* board says nothing about
+board 22. A board is silent when its replies stop, not when one or two are
+lost (:class:`ReplyHistory`): ``stale_after`` without a reply once the Mega
+said the board did not answer it (a Small State with :data:`tables.NO_ANSWER`
+added to the board, data 0), whatever the link loses; without that word,
+``stale_after`` on a clean link and on a lossy one as many missed cycles as
+its own loss rate makes unlikely. A silent board (or one never heard while others are) makes the
 whole state stale, naming it in ``Snapshot.silent``. :func:`pab_blocker` says whether that stops the PABs:
 a silent board they read does (the clamp angles come from boards 22, 23, 26,
 27); a silent camera or rear board does not. Odometry and wheel speed are
@@ -91,17 +92,27 @@ class StateAssembler(object):
         Raises :class:`BadState` (and keeps the old values) for bad input.
         """
         data = list(data)
+        if board & tables.NO_ANSWER and (board & ~tables.NO_ANSWER) in tables.BOARDS:
+            board &= ~tables.NO_ANSWER          # the Mega: it did not answer; its values stay the last heard
+            self._replies.no_answer(board, now)
+            self._fold_odometry(board, now)
+            return self._takes_its_place(board)
         _check(board, data)
         if board == tables.IMU_BOARD:
             self._orientation = _orientation(data, self._orientation)
-        new_cycle = self._previous_board is not None and board <= self._previous_board
         if board in tables.DRIVE_BOARDS:
             self._odometry.update(board, data[tables.SS_ODOMETRY])
         self._raw[board] = data
         self._replies.reply(board, now)
         self._arrival[board] = now
         self._fold_odometry(board, now)
-        # one state per cycle: at board 28, or (28 lost) when the next cycle starts
+        return self._takes_its_place(board)
+
+    def _takes_its_place(self, board):
+        """Board ``board`` was heard of in the cycle: True when that completes
+        one. One state per cycle: at board 28, or (28 lost) when the next
+        cycle starts."""
+        new_cycle = self._previous_board is not None and board <= self._previous_board
         complete = board == tables.BOARDS[-1] or (new_cycle and self._previous_board != tables.BOARDS[-1])
         self._previous_board = board
         return complete
@@ -167,12 +178,16 @@ class ReplyHistory(object):
     which reads as some loss): a silent board is noticed 0.6-0.9 s after its
     first missing reply instead of aborting a goal about once per Clamp
     Straight on three lost replies in a row (7 boards x 10 cycles/s x 1e-3);
-    measurements.md#lossy-bus.
+    measurements.md#lossy-bus. The Mega's word that the board did not answer
+    it makes the silence the board's, not the link's: silent once it said
+    so for the fewest cycles in a row (3), or once ``k`` is the fewest again
+    and passed whatever the loss (measurements.md#lossy-bus-silent).
     """
 
     def __init__(self, stale_after=STALE_AFTER_S):
         self.stale_after = stale_after
         self._last = {}                 # board -> time of its newest reply
+        self._unanswered = {}           # board -> cycles the Mega said it did not answer since its newest reply
         self._first = None              # time of the first reply of any board
         self._missed = {}               # board -> deque of replies missed before each reply
         self._jitter = {}               # board -> deque of |gap - whole cycles| s
@@ -183,6 +198,7 @@ class ReplyHistory(object):
         """Board ``board`` answered at ``now`` (s, monotonic)."""
         if self._first is None:
             self._first = now
+        unanswered = self._unanswered.pop(board, 0)
         last = self._last.get(board)
         self._last[board] = now
         if last is None:
@@ -195,9 +211,17 @@ class ReplyHistory(object):
         cycles = max(1, int(round(gap / self._cycle)))
         if cycles > MAX_MISSED_CYCLES + 1:
             return                      # a silence that ended (a reset, a reconnect), not loss
-        self._missed.setdefault(board, collections.deque(maxlen=HISTORY_REPLIES)).append(cycles - 1)
+        self._missed.setdefault(board, collections.deque(maxlen=HISTORY_REPLIES)).append(
+            max(0, cycles - 1 - unanswered))    # the link's losses: not what the board did not answer
         self._jitter.setdefault(board, collections.deque(maxlen=HISTORY_REPLIES)).append(
             abs(gap - cycles * self._cycle))
+
+    def no_answer(self, board, now):
+        """The Mega says board ``board`` did not answer it (at ``now``, s): its
+        silence is its own, not the link's loss."""
+        if self._first is None:
+            self._first = now
+        self._unanswered[board] = self._unanswered.get(board, 0) + 1
 
     def cycle(self):
         """The Mega's refresh cycle as the replies show it (s)."""
@@ -213,14 +237,19 @@ class ReplyHistory(object):
         return _lost_fraction([m for missed in self._missed.values() for m in missed])
 
     def missed_cycles_allowed(self, board, bus_loss=None):
-        """Replies in a row the board may miss before it is silent."""
-        least = int(round(self.stale_after / self._cycle))
+        """Replies in a row the board may miss before it is silent (the
+        fewest once the Mega said it did not answer)."""
+        least = self._least_missed()
         rate = max(self.loss(board), self.bus_loss() if bus_loss is None else bus_loss)
-        if rate <= 0.0:
+        if rate <= 0.0 or board in self._unanswered:
             return least
         if rate >= 1.0:
             return MAX_MISSED_CYCLES
         return min(MAX_MISSED_CYCLES, max(least, int(math.ceil(math.log(FALSE_SILENCE) / math.log(rate)))))
+
+    def _least_missed(self):
+        """Cycles in a row a board that answers nothing is silent after (3)."""
+        return int(round(self.stale_after / self._cycle))
 
     def silence_after(self, board, bus_loss=None):
         """Seconds after its newest reply that the board counts as silent."""
@@ -228,20 +257,23 @@ class ReplyHistory(object):
         return (self.missed_cycles_allowed(board, bus_loss) + 0.5) * self._cycle + min(jitter, self._cycle)
 
     def missed(self, now):
-        """Boards whose latest reply is missing (half a cycle and the jitter
-        seen past when it was due): their values are the last ones heard."""
+        """Boards whose latest reply is missing (the Mega said so, or half a
+        cycle and the jitter seen past when it was due): their values are the
+        last ones heard."""
         if self._first is None:
             return ()
-        return tuple(b for b in tables.BOARDS if now - self._last.get(b, self._first)
+        return tuple(b for b in tables.BOARDS if b in self._unanswered or now - self._last.get(b, self._first)
                      > 1.5 * self._cycle + min(max(self._jitter.get(b, ()) or (0.0,)), self._cycle))
 
     def silent(self, now):
-        """Boards whose replies stopped (or never came while others did)."""
+        """Boards whose replies stopped (or never came while others did): the
+        Mega said the board did not answer the fewest cycles in a row, or the
+        cycles it may miss passed without a reply."""
         if self._first is None:
             return ()
-        bus_loss = self.bus_loss()
-        return tuple(b for b in tables.BOARDS
-                     if now - self._last.get(b, self._first) > self.silence_after(b, bus_loss))
+        bus_loss, least = self.bus_loss(), self._least_missed()
+        return tuple(b for b in tables.BOARDS if self._unanswered.get(b, 0) >= least
+                     or now - self._last.get(b, self._first) > self.silence_after(b, bus_loss))
 
 
 def _lost_fraction(missed):

@@ -89,7 +89,7 @@ class SimHarness(object):
                                    feedback=self.feedback.append, log=self.log.append)
         self.assembler = StateAssembler()
         self.frozen = False           # True: the robot stops reporting
-        self.silent = set()           # boards that stop answering (the Mega skips them)
+        self.silent = set()           # boards that stop answering (the Mega says so in their place)
         self.failure = None           # what stopped the robot thread, if it failed
         self._due = []                # (condition, action) of :meth:`when`
         self._due_lock = threading.Lock()
@@ -145,7 +145,8 @@ class SimHarness(object):
         self.limit.tick()
         self.clock.advance()
         if not self.frozen:
-            self._report([(b, d) for b, d in states if b not in self.silent])
+            self._report([(b | tables.NO_ANSWER, [0] * tables.SMALL_STATE_SIZE) if b in self.silent else (b, d)
+                          for b, d in states])
         self.clock.wake()
 
     def _run_due(self):
