@@ -31,6 +31,7 @@ GROUND_TRUTH_TOPIC = '/pirate/sim/ground_truth'
 #: optical frames (z out of the lens, x right, y down) they are stamped in.
 CAMERA_NAMESPACES = {'front': '/pirate/front_camera', 'rear': '/pirate/rear_camera'}
 CAMERA_FRAMES = {'front': 'front_camera_optical', 'rear': 'rear_camera_optical'}
+CAMERA_POINT_SERVICE = '/pirate/camera/point'  # pirate/CameraPoint: pan and tilt the front camera
 #: The manager took in the robot state stamped so (std_msgs/Time), published
 #: in simulated time only: the simulator steps on when it hears it
 #: (pirate.sim.lockstep, doc/clock.md).

@@ -8,6 +8,8 @@ Each test/rostest/panel_*.test holds one scenario as the ``~steps`` param
   midi: [CH, VALUE]              one MidiInput event
   wait_moved: {joint, min_rad, timeout_s}
                                  |angle - angle at the step| >= min_rad in time
+  wait_angle: {joint, rad, tol_rad, timeout_s}
+                                 the joint reads rad within tol_rad in time
   expect_still: {joints, tol_rad, for_s}
                                  none of them moves more than tol_rad for for_s
   wait_still: {joints, tol_rad, for_s, timeout_s}
@@ -36,6 +38,9 @@ Each test/rostest/panel_*.test holds one scenario as the ``~steps`` param
                                  message / a primitive's guard / the server
                                  state after it contain those texts
   other_client: {goal}           another action client sends this goal
+  camera_point: {pan, tilt, ok, says}
+                                 /pirate/camera/point answers ok (true or
+                                 false) with a message containing says
 
 Timeouts are wall-clock seconds (default EVENT_WAIT_S); the robot runs in simulated time (faster).
 Before the first step it waits for the robot state and for the manager to
@@ -57,6 +62,7 @@ from pirate import names
 from pirate.robot import tables
 from pirate.msg import (MidiInput, MidiOutput, PirateAction, PirateActionResult, PirateGoal, RobotState,
                         SetpointArray)
+from pirate.srv import CameraPoint
 from pirate.supervisory.goal_client_ros import SimpleGoalClient
 
 STATUS = {'active': 1, 'preempted': 2, 'succeeded': 3, 'aborted': 4, 'rejected': 5}
@@ -157,6 +163,11 @@ class PanelScenario(unittest.TestCase):
         self._until(lambda: abs(self.angles[joint] - start) >= arg['min_rad'],
                     arg.get('timeout_s', EVENT_WAIT_S), '%s to move %.2f rad' % (joint, arg['min_rad']))
 
+    def step_wait_angle(self, arg):
+        joint = arg['joint']
+        self._until(lambda: abs(self.angles[joint] - arg['rad']) <= arg['tol_rad'],
+                    arg.get('timeout_s', EVENT_WAIT_S), '%s to read %.2f rad' % (joint, arg['rad']))
+
     def _moved(self, joints, tol_rad):
         """A callable: the joints that moved more than ``tol_rad`` (rad, with their change) since now."""
         with self.lock:
@@ -254,6 +265,11 @@ class PanelScenario(unittest.TestCase):
         self.assertTrue(self.other.wait_for_server(rospy.Duration(30)), 'no action server')
         spec = arg['goal']
         self.other.send_goal(PirateGoal(name=int(spec['name']), pipe_diameter=int(spec.get('pipe_diameter', 90))))
+
+    def step_camera_point(self, arg):
+        rospy.wait_for_service(names.CAMERA_POINT_SERVICE, EVENT_WAIT_S)
+        said = rospy.ServiceProxy(names.CAMERA_POINT_SERVICE, CameraPoint)(arg['pan'], arg['tilt'])
+        self.assertEqual((said.ok, arg['says'] in said.message), (arg['ok'], True), said.message)
 
     # --- the test ----------------------------------------------------------------------
     def test_scenario(self):

@@ -1,7 +1,7 @@
 """Setpoint / Control / Limit (report 4.2-4.4) with a fake publisher."""
 import pytest
 
-from pirate.robot import commands, safety, tables
+from pirate.robot import commands, safety, tables, units
 from pirate.msg import ControlArray, LimitArray, SetpointArray
 
 
@@ -175,3 +175,32 @@ def test_a_lights_duty_that_is_not_counts_is_refused(arrays, duty):
     with pytest.raises(ValueError, match='LED duty .*: a whole number of counts from 0 to %d' % safety.DUTY_MAX):
         commands.light(control, setpoint, duty)
     assert [setpoint.get(led) for led in commands.LEDS] == [0, 0]
+
+
+def test_the_camera_points_in_position_mode_while_the_robot_plays(arrays):
+    """/pirate/camera/point: pan and tilt as the panel's knob and slider send them in position mode."""
+    setpoint, control, limit, pubs, _ = arrays
+    assert not commands.playing(control)
+    commands.play(control, setpoint, limit)
+    assert commands.playing(control)
+    commands.point_camera(control, setpoint, -1.0, 0.5)
+    assert [control.mode_of(joint) for joint in commands.CAMERA_JOINTS] == ['position', 'position']
+    assert [setpoint.get(joint) for joint in commands.CAMERA_JOINTS] == [units.rad_to_encoder(-1.0),
+                                                                         units.rad_to_encoder(0.5)]
+    control.command('stop')
+    assert not commands.playing(control)
+
+
+@pytest.mark.parametrize('pan, tilt, said', [
+    (float('nan'), 0.0, 'camera_pan nan: an angle in rad'),
+    (0.0, '1', "camera_tilt '1': an angle in rad"),
+    (True, 0.0, 'camera_pan True'),
+    (3.5, 0.0, 'camera_pan 3.50 rad: beyond half a turn either way'),
+])
+def test_a_camera_angle_it_cannot_take_is_refused_and_nothing_sent(arrays, pan, tilt, said):
+    setpoint, control, _, pubs, _ = arrays
+    sent = len(pubs['control'].sent)
+    with pytest.raises(ValueError) as refused:
+        commands.point_camera(control, setpoint, pan, tilt)
+    assert said in str(refused.value)
+    assert len(pubs['control'].sent) == sent and [setpoint.get(j) for j in commands.CAMERA_JOINTS] == [0, 0]

@@ -71,6 +71,6 @@ def test_an_unknown_kind_is_refused_with_the_known_ones():
 def test_the_dig_list_is_sorted_from_the_launch_pit(pipe_map):
     marked = [{'number': n, 'position': fd.position_on_map(pipe_map, along, 0.4, 0.1, 0, 0, UPRIGHT)}
               for n, along in ((1, 3.0), (2, 1.0), (3, 2.0))]
-    listed = fd.dig_list(marked)
+    listed = fd.dig_list(marked + [dict(marked[1], number=4, kind=fd.VIEW)])    # a view is no place to dig
     assert [f['number'] for f, _ in listed] == [2, 3, 1]
     assert listed[0][1].startswith('dig at 0.60 m (+/- 0.10 m) from the launch pit along the route')

@@ -26,6 +26,71 @@ def test_the_demo_job_plans_there_and_back_and_marks_within_the_route():
     nearest_mm = min(pipe_map.points[p] for p in job.points) * 1000
     assert job.marks and all(nearest_mm < m.along_mm < farthest_mm for m in job.marks), job.marks
     assert {m.leg for m in job.marks} == {'in', 'back'}
+    assert job.stops and all(nearest_mm < s.along_mm < farthest_mm for s in job.stops), job.stops
+
+
+def test_a_stop_looks_the_ways_its_job_says_or_round_the_wall(tmp_path):
+    stops = 'stops:\n  - {along_mm: 5, note: here, views_deg: [[-90, 10]]}\n  - {along_mm: 9, leg: back}\n'
+    job = _load(tmp_path, GOOD + stops)
+    view = (pytest.approx(-1.5708, abs=1e-4), pytest.approx(0.1745, abs=1e-4))
+    assert job.stops[0] == jobs.Stop(5.0, 'in', 'here', (view,))
+    assert len(job.stops[1].views) == len(jobs.DEFAULT_VIEWS_DEG) and job.stops[1].leg == 'back'
+
+
+class FakeRobot(object):
+    """The stack as a stop sees it: records the calls; ``refuse`` names a call that fails."""
+
+    def __init__(self, refuse=(), stands=True, gets_there=True):
+        self.calls, self._refuse, self._stands, self._there = [], refuse, stands, gets_there
+
+    def _answer(self, name, *args):
+        self.calls.append((name,) + args)
+        return name not in self._refuse, '%s %s' % (name, 'refused' if name in self._refuse else 'done')
+
+    def pause(self):
+        return self._answer('pause')
+
+    def resume(self):
+        return self._answer('resume')
+
+    def point(self, pan, tilt):
+        return self._answer('point', round(pan, 3), round(tilt, 3))
+
+    def mark(self, note):
+        return self._answer('mark', note)
+
+    def stands(self):
+        self.calls.append(('stands',))
+        return self._stands
+
+    def pointed(self, pan, tilt):
+        return self._there
+
+
+STOP = jobs.Stop(1900.0, 'in', 'by the water', ((0.0, 0.0), (-1.0, 0.0)))
+
+
+def test_a_stop_pauses_looks_each_way_marks_each_view_and_resumes():
+    robot, said = FakeRobot(), []
+    assert jobs.run_stop(STOP, robot, said.append) == 2
+    assert [c[0] for c in robot.calls] == ['pause', 'stands', 'point', 'mark', 'point', 'mark', 'point', 'resume']
+    assert robot.calls[4] == ('point', -1.0, 0.0) and robot.calls[6] == ('point', 0.0, 0.0)
+    assert robot.calls[5] == ('mark', 'by the water (pan -57 deg, tilt +0 deg)')
+    assert said[-1] == 'stop at 1900 mm: 2 of 2 views; resume done'
+
+
+@pytest.mark.parametrize('robot, calls, marked, said', [
+    (FakeRobot(refuse=('pause',)), ['pause'], 0, 'stop at 1900 mm not made: pause refused'),
+    (FakeRobot(stands=False), ['pause', 'stands', 'resume'], 0, 'did not come to rest; no views'),
+    (FakeRobot(refuse=('point',)), ['pause', 'stands', 'point', 'resume'], 0, 'point refused'),
+    (FakeRobot(gets_there=False), ['pause', 'stands'] + ['point', 'mark'] * 2 + ['point', 'resume'], 2,
+     'the camera had not got there'),
+])
+def test_a_stop_that_cannot_look_says_why_and_the_mission_goes_on(robot, calls, marked, said):
+    lines = []
+    assert jobs.run_stop(STOP, robot, lines.append) == marked
+    assert [c[0] for c in robot.calls] == calls
+    assert any(said in line for line in lines) or any(said in str(c) for c in robot.calls), (lines, robot.calls)
 
 
 @pytest.mark.parametrize('text, said', [
@@ -38,6 +103,13 @@ def test_the_demo_job_plans_there_and_back_and_marks_within_the_route():
     (GOOD + '  - {along_mm: 5, knd: leak}\n', 'unknown key(s) knd'),
     (GOOD + '  - 5\n', 'mark 1: {along_mm, leg, kind, note}'),
     ('map: [\n', 'job.yaml'),
+    (GOOD + 'stop:\n', 'unknown key(s) stop (map, route, marks, stops)'),
+    (GOOD + 'stops:\n  - {along_mm: -1}\n', 'stop 1: along_mm must be a distance'),
+    (GOOD + 'stops:\n  - {along_mm: 5, views_deg: []}\n', 'stop 1: views_deg must be [pan, tilt] pairs'),
+    (GOOD + 'stops:\n  - {along_mm: 5, views_deg: [[0]]}\n', 'views_deg must be [pan, tilt] pairs'),
+    (GOOD + 'stops:\n  - {along_mm: 5, views_deg: [[200, 0]]}\n', 'in degrees within +-180'),
+    (GOOD + 'stops:\n  - {along_mm: 5, views_deg: [[true, 0]]}\n', 'views_deg must be'),
+    (GOOD + 'stops:\n  - {along_mm: 5, kind: leak}\n', 'unknown key(s) kind (along_mm, leg, note, views_deg)'),
 ])
 def test_a_bad_job_file_is_refused_naming_what_is_wrong(tmp_path, text, said):
     with pytest.raises(jobs.JobError) as refused:

@@ -16,8 +16,11 @@ import math
 from pirate.supervisory import planner
 from pirate.world import network
 
-#: What a finding may be: what the world format's defects are, or other.
-KINDS = tuple(network.DEFECT_KEYS) + ('other',)
+#: A frame taken to look, not a defect (an inspection stop's sweep): in the
+#: report, not in the dig list.
+VIEW = 'view'
+#: What a finding may be: what the world format's defects are, other, or a view.
+KINDS = tuple(network.DEFECT_KEYS) + ('other', VIEW)
 #: The robot's roll when upright (Fig 4.7: pi/2 upright, 0 lying on its right side).
 UPRIGHT_RAD = math.pi / 2
 #: A camera within this angle of the pipe's axis sees the whole ring ahead: no clock position.
@@ -104,9 +107,11 @@ def position_on_map(network, along_m, launch_m, uncertainty_m, pan_rad, tilt_rad
 
 
 def dig_list(findings):
-    """The findings sorted by their distance from the launch pit, each with
-    its line 'dig at X m from the launch pit along the route'."""
-    placed = sorted(findings, key=lambda f: (f['position']['from_launch_pit_mm'], f['number']))
+    """The findings (views left out) sorted by their distance from the
+    launch pit, each with its line 'dig at X m from the launch pit along the
+    route'."""
+    placed = sorted((f for f in findings if f.get('kind') != VIEW),
+                    key=lambda f: (f['position']['from_launch_pit_mm'], f['number']))
     return [(f, 'dig at %.2f m (+/- %.2f m) from the launch pit along the route'
              % (f['position']['from_launch_pit_mm'] / 1000.0, f['position']['uncertainty_mm'] / 1000.0))
             for f in placed]

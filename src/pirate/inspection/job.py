@@ -6,17 +6,32 @@ and the marks: each a kind (:data:`pirate.inspection.findings.KINDS`), the
 operator's note, and where it is marked: when the mission's estimate of
 the robot's middle first passes ``along_mm`` (mm along the map) on the
 ``leg`` named, ``in`` (before the route's farthest point) or ``back``.
+And its inspection stops, due the same way (``along_mm``, ``leg``,
+``note``): there the mission pauses (the robot stands), the front camera
+looks each way of ``views_deg`` ([pan, tilt] pairs, degrees; default
+ahead, left, right, up, down) and each view is recorded as a finding of
+kind ``view`` (both cameras' frames; not in the dig list), the camera
+turns back ahead and the mission resumes (:func:`run_stop`).
 """
 import collections
+import math
 
 import yaml
 
 from pirate.inspection import findings
 from pirate.supervisory import planner
 
-Job = collections.namedtuple('Job', 'map points marks')
+Job = collections.namedtuple('Job', 'map points marks stops')
 Mark = collections.namedtuple('Mark', 'along_mm leg kind note')
+#: An inspection stop: where it is due (as a mark) and the views, (pan, tilt) rad.
+Stop = collections.namedtuple('Stop', 'along_mm leg note views')
 LEGS = ('in', 'back')
+#: An inspection stop's views when the job names none: ahead, the wall left
+#: and right, the top and the bottom ((pan, tilt) degrees; the pan and tilt
+#: reach +-86 deg in the twin, config/twin.yaml camera.range_rad).
+DEFAULT_VIEWS_DEG = ((0, 0), (-60, 0), (60, 0), (0, 45), (0, -45))
+#: Largest pan or tilt a view may ask, degrees: what the encoder tells (half a turn).
+VIEW_MAX_DEG = 180
 #: The junction PABs: round a corner their estimate is odometry, not yet re-anchored.
 JUNCTION_PABS = ('MITRE_BEND', 'T_JOINT')
 
@@ -37,26 +52,53 @@ def load(path):
     points = data.get('route')
     if not isinstance(points, list) or len(points) < 2 or not all(isinstance(p, str) for p in points):
         raise JobError('%s: route: the names of two points or more, in order' % path)
-    return Job(data['map'], points, [_mark(path, k, entry) for k, entry in enumerate(data.get('marks') or [], 1)])
+    unknown = set(data) - {'map', 'route', 'marks', 'stops'}
+    if unknown:
+        raise JobError('%s: unknown key(s) %s (map, route, marks, stops)' % (path, ', '.join(sorted(unknown))))
+    return Job(data['map'], points, [_mark(path, k, entry) for k, entry in enumerate(data.get('marks') or [], 1)],
+               [_stop(path, k, entry) for k, entry in enumerate(data.get('stops') or [], 1)])
 
 
 def _mark(path, number, entry):
     where = '%s: mark %d' % (path, number)
+    along, leg = _due_where(where, entry, Mark._fields)
+    try:
+        kind = findings.check_kind(entry.get('kind', 'other'))
+    except findings.FindingError as error:
+        raise JobError('%s: %s' % (where, error))
+    return Mark(along, leg, kind, str(entry.get('note', '')))
+
+
+def _stop(path, number, entry):
+    where = '%s: stop %d' % (path, number)
+    fields = ('along_mm', 'leg', 'note', 'views_deg')
+    along, leg = _due_where(where, entry, fields)
+    views = entry.get('views_deg', DEFAULT_VIEWS_DEG)
+    if not isinstance(views, (list, tuple)) or not views or not all(
+            isinstance(v, (list, tuple)) and len(v) == 2 and all(_degrees(a) for a in v) for v in views):
+        raise JobError('%s: views_deg must be [pan, tilt] pairs in degrees within +-%d, not %r'
+                       % (where, VIEW_MAX_DEG, views))
+    return Stop(along, leg, str(entry.get('note', '')),
+                tuple((math.radians(pan), math.radians(tilt)) for pan, tilt in views))
+
+
+def _degrees(value):
+    return not isinstance(value, bool) and isinstance(value, (int, float)) and abs(value) <= VIEW_MAX_DEG
+
+
+def _due_where(where, entry, fields):
+    """(along_mm, leg) of a mark's or stop's ``entry``; JobError naming ``where``."""
     if not isinstance(entry, dict):
-        raise JobError('%s: {along_mm, leg, kind, note}, not %r' % (where, entry))
-    unknown = set(entry) - set(Mark._fields)
+        raise JobError('%s: {%s}, not %r' % (where, ', '.join(fields), entry))
+    unknown = set(entry) - set(fields)
     if unknown:
-        raise JobError('%s: unknown key(s) %s (along_mm, leg, kind, note)' % (where, ', '.join(sorted(unknown))))
+        raise JobError('%s: unknown key(s) %s (%s)' % (where, ', '.join(sorted(unknown)), ', '.join(fields)))
     along = entry.get('along_mm')
     if isinstance(along, bool) or not isinstance(along, (int, float)) or along < 0:
         raise JobError('%s: along_mm must be a distance in mm >= 0, not %r' % (where, along))
     if entry.get('leg', 'in') not in LEGS:
         raise JobError('%s: leg must be one of %s, not %r' % (where, ', '.join(LEGS), entry.get('leg')))
-    try:
-        kind = findings.check_kind(entry.get('kind', 'other'))
-    except findings.FindingError as error:
-        raise JobError('%s: %s' % (where, error))
-    return Mark(float(along), entry.get('leg', 'in'), kind, str(entry.get('note', '')))
+    return float(along), entry.get('leg', 'in')
 
 
 def corners_mm(pipe_map):
@@ -121,3 +163,43 @@ class DueMarks(object):
     def left(self):
         """The marks not yet due."""
         return list(self._left)
+
+
+def run_stop(stop, robot, say):
+    """Make inspection stop ``stop`` with ``robot``, which answers
+    ``pause()``, ``resume()``, ``point(pan_rad, tilt_rad)`` and
+    ``mark(note)`` with (ok, message), and waits in ``stands()`` until the
+    robot stands paused and in ``pointed(pan_rad, tilt_rad)`` until the
+    camera reads there (True, or False when its wait ran out). Each view is
+    marked (said when the camera was not there yet); the camera turns back
+    ahead and the mission resumes whatever happened after the pause.
+    ``say(line)`` prints. Returns the number of views marked."""
+    ok, message = robot.pause()
+    if not ok:
+        say('stop at %.0f mm not made: %s' % (stop.along_mm, message))
+        return 0
+    marked = 0
+    try:
+        if not robot.stands():
+            say('stop at %.0f mm: the robot did not come to rest; no views' % stop.along_mm)
+            return 0
+        turned = False
+        for pan, tilt in stop.views:
+            ok, message = robot.point(pan, tilt)
+            if not ok:
+                say('stop at %.0f mm: %s' % (stop.along_mm, message))
+                break
+            turned = True
+            there = robot.pointed(pan, tilt)
+            ok, message = robot.mark('%s (pan %+.0f deg, tilt %+.0f deg%s)' % (
+                stop.note or 'inspection stop', math.degrees(pan), math.degrees(tilt),
+                '' if there else '; the camera had not got there'))
+            marked += ok
+            say('view: %s' % message)
+        if turned:
+            robot.point(0.0, 0.0)
+            robot.pointed(0.0, 0.0)
+    finally:
+        ok, message = robot.resume()
+        say('stop at %.0f mm: %d of %d views; %s' % (stop.along_mm, marked, len(stop.views), message))
+    return marked

@@ -47,7 +47,7 @@ from pirate.manager.goal_owner_ros import OwnerMonitor
 from pirate.manager.robot_link import RobotLink
 from pirate.sequencer.primitives import MotionPrimitives
 from pirate.sequencer.server import ABORTED, PREEMPTED, SUCCEEDED, Feedback, PirateServer
-from pirate.srv import ServerStatus, ServerStatusResponse
+from pirate.srv import CameraPoint, CameraPointResponse, ServerStatus, ServerStatusResponse
 
 SHUTDOWN_FLUSH_S = 0.3
 #: Where the manager keeps what the last goal left unfinished (PirateServer.unfinished_data).
@@ -157,6 +157,7 @@ class PirateManager(object):
         self._action = QuietActionServer(names.PIRATE_ACTION, PirateAction, self._on_goal,
                                          self._on_cancel, auto_start=False)
         rospy.Service(names.SERVER_STATUS_SERVICE, ServerStatus, self._status)
+        rospy.Service(names.CAMERA_POINT_SERVICE, CameraPoint, self._point_camera)
         self._lockstep = (rospy.Publisher(names.LOCKSTEP_TOPIC, Time, queue_size=5)
                           if rospy.get_param('/use_sim_time', False) else None)
         rospy.Subscriber(names.ROBOT_STATE_TOPIC, RobotState, self._on_state, queue_size=5)
@@ -197,6 +198,19 @@ class PirateManager(object):
         """The panel's veto on goals (stopped), or None without a panel."""
         panel = getattr(self, 'panel', None)
         return panel.mapper.goal_refusal() if panel is not None else None
+
+    def _point_camera(self, req):
+        """/pirate/camera/point: the front camera turned, unless the panel is
+        stopped or the robot was not started (nothing moves before Play)."""
+        refusal = self._panel_refusal() or (None if commands.playing(self.control) else
+                                            'the robot is not playing: nothing moves before Play')
+        try:
+            if refusal:
+                raise ValueError(refusal)
+            commands.point_camera(self.control, self.setpoint, req.pan, req.tilt)
+        except ValueError as why:
+            return CameraPointResponse(False, 'camera not turned: %s' % why)
+        return CameraPointResponse(True, 'camera turning to pan %.2f rad, tilt %.2f rad' % (req.pan, req.tilt))
 
     def _diagnose(self):
         """diagnostic_updater: the Pirate Server and the freshness of the robot state, 1 Hz."""

@@ -26,6 +26,7 @@ cancelled PAB had in flight can land on the wire after the hold.
 Pure Python: the ROS publisher and the clock are passed in.
 """
 import contextlib
+import math
 import threading
 import time
 
@@ -266,6 +267,34 @@ def light(control, setpoint, duty):
     with control.wire_lock:
         for led in LEDS:
             setpoint.set(led, lights_duty(duty))
+
+
+def playing(control):
+    """The boards were last sent PLAY (not STOP): they run their setpoints."""
+    return control.get(tables.element('rear_module').index) == safety.COMMAND_CODES['play']
+
+
+#: The front camera's joints in the order :func:`point_camera` takes them.
+CAMERA_JOINTS = ('camera_pan', 'camera_tilt')
+
+
+def point_camera(control, setpoint, pan_rad, tilt_rad):
+    """The front camera to ``pan_rad`` and ``tilt_rad`` in position mode, as
+    the panel's pan knob and tilt slider in position mode send it;
+    ValueError (nothing sent) for an angle that is not a number or lies
+    beyond what the joint's encoder can tell (half a turn either way)."""
+    counts = []
+    for joint, rad in zip(CAMERA_JOINTS, (pan_rad, tilt_rad)):
+        if isinstance(rad, bool) or not isinstance(rad, (int, float)) or not math.isfinite(rad):
+            raise ValueError('%s %r: an angle in rad' % (joint, rad))
+        value = units.rad_to_encoder(rad)
+        if abs(value) > safety.POSITION_MAX_COUNTS:
+            raise ValueError('%s %.2f rad: beyond half a turn either way, what its encoder tells' % (joint, rad))
+        counts.append(value)
+    with control.wire_lock:
+        for joint, value in zip(CAMERA_JOINTS, counts):
+            control.set_mode(joint, 'position')
+            setpoint.set(joint, value)
 
 
 def hold_measured(control, setpoint, angles):
