@@ -88,6 +88,8 @@ def test_m_buttons_send_mission_commands_in_pab_mode_and_stop_joints_in_manual()
     assert client.sent == []
     assert rig.control.get(tables.element('bend_iii').index) == safety.COMMAND_CODES['single_stop']
     rig.press(STOP)
+    assert client.sent == ['cancel']     # Stop: a mission on its way to the executive is cancelled too
+    del client.sent[:]
     pab_mode(rig)
     for channel in (M2_CONFIRM, M3_PAUSE, M4_RESUME, M6_CONFIRM):
         rig.mapper.handle(channel, PRESS)
@@ -163,6 +165,21 @@ def test_stop_cancels_the_mission_and_its_running_pab():
     rig.pab.active = True
     rig.press(STOP)
     assert client.sent == ['cancel'] and rig.pab.cancels == 1 and not rig.mapper.playing
+
+
+def test_stop_before_the_mission_was_taken_in_cancels_it_and_an_idle_stop_tells_nothing():
+    """Stop while a mission was on its way (no feedback yet) stopped the panel
+    but not the mission: its first PAB was refused, "the operator panel is
+    stopped", and it ended aborted rather than cancelled."""
+    client = Commands()
+    rig = rig_with(client)
+    pab_mode(rig)
+    rig.press(STOP)
+    assert client.sent == ['cancel']
+    told = list(rig.logs)
+    rig.mapper.mission_reply('cancel', True, 'no mission is running; one sent before now is cancelled when it comes')
+    rig.mapper.mission_reply('cancel', False, 'no mission executive answers')
+    assert rig.logs == told
 
 
 # --- a panel that disconnects ------------------------------------------------------

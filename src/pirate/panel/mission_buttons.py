@@ -14,7 +14,8 @@ pause button stays lit while the mission is paused, and while a step
 waits for confirmation the confirm button and the button of the waiting
 PAB (if the panel has one for that PAB, option and direction) blink;
 pressing either confirms. While a mission runs every other PAB button is
-refused (its goals come from the mission). Stop cancels the mission too.
+refused (its goals come from the mission). Stop cancels the mission too,
+also one on its way to the executive.
 
 Pure Python: the mission client (``command(text)``, replies coming back
 through :meth:`MissionPanel.reply`) is passed in.
@@ -82,7 +83,10 @@ class MissionPanel(object):
         self._log('mission %s: %s' % (status or 'ended', message))
 
     def reply(self, command, ok, message):
-        """The executive's answer to a command the panel sent."""
+        """The executive's answer to a command the panel sent (the cancel of
+        a Stop with no mission running says nothing worth telling)."""
+        if command == 'cancel' and not self.active:
+            return
         self._log('mission %s: %s' % (command, message) if ok else
                   'mission %s refused: %s' % (command, message))
         if ok and command.startswith('level '):
@@ -100,8 +104,10 @@ class MissionPanel(object):
         self._client.command(command)
 
     def stop(self):
-        """Stop on the panel: the mission ends (Stop always cancels)."""
-        if self.active:
+        """Stop on the panel: the mission ends (Stop always cancels), also
+        one sent that the executive has not taken in yet (it cancels a
+        mission sent before the word, when it comes)."""
+        if self._client is not None:
             self.send('cancel')
 
     def disconnected(self, reason):

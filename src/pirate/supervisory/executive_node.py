@@ -12,7 +12,9 @@ The operator's word during a mission: the ``/pirate/mission/command``
 service (pirate/MissionCommand: pause, resume, confirm, cancel,
 level full|confirm|manual), which the panel's mission buttons call; between
 missions ``level X`` sets the level of the next mission whose goal names
-none (the panel's level buttons work before a mission). The estimated position
+none (the panel's level buttons work before a mission), and ``cancel``
+cancels a mission sent before it that has not come yet (the panel's Stop
+overtaking a goal on its way). The estimated position
 is published as a pose on the map (``/pirate/mission/pose``, frame ``map``)
 and as millimetres along the path (``/pirate/mission/along_mm``), with how
 far it may be off (``/pirate/mission/uncertainty_mm``, the localiser's
@@ -132,6 +134,7 @@ class MissionExecutiveNode(object):
         rospy.loginfo('mission_executive: %s (log %s)', self._last_mission(), self._log_path)
         self._log = mission_log.MissionLog(self._log_path)
         self._log_failed = False
+        self._cancelled_at = rospy.Time()   # a cancel with no mission running: one sent before is cancelled
         self._server = actionlib.ActionServer(names.MISSION_ACTION, MissionAction, self._on_goal,
                                               self._on_cancel, auto_start=False)
         rospy.Service(names.MISSION_COMMAND_SERVICE, MissionCommand, self._on_command)
@@ -143,7 +146,12 @@ class MissionExecutiveNode(object):
 
     # --- goals --------------------------------------------------------------
     def _on_goal(self, handle):
-        goal = handle.get_goal()
+        goal, sent = handle.get_goal(), handle.get_goal_id().stamp
+        if not sent.is_zero() and sent <= self._cancelled_at:       # the operator's Stop overtook it
+            reason = 'cancelled by the operator before it started'
+            rospy.loginfo('mission_executive: %s', reason)
+            handle.set_canceled(MissionResult(status='cancelled', message=reason), reason)
+            return
         try:
             run, pipe_map, accepted = (self._resumed if goal.resume else self._planned)(handle, goal)
         except (network.WorldError, planner.PlanError, ValueError, yaml.YAMLError) as refused:
@@ -259,6 +267,9 @@ class MissionExecutiveNode(object):
             ok, message = True, self._last_mission()
         elif running is None and word == 'resume':
             ok, message = self._send_resume()
+        elif running is None and word == 'cancel':
+            self._cancelled_at = rospy.Time.now()
+            ok, message = True, 'no mission is running; one sent before now is cancelled when it comes'
         elif running is None:
             ok, message, self._next_level = ex.between_missions(req.command, self._next_level)
         else:
