@@ -70,7 +70,7 @@ def _mark(path, number, entry):
 
 
 def _stop(path, number, entry):
-    where = '%s: stop %d' % (path, number)
+    where = '%s: stops, entry %d' % (path, number)
     fields = ('along_mm', 'leg', 'note', 'views_deg')
     along, leg = _due_where(where, entry, fields)
     views = entry.get('views_deg', DEFAULT_VIEWS_DEG)
