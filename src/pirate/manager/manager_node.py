@@ -467,12 +467,17 @@ def _restore_ended(server):
 
 def main():
     rospy.init_node('pirate_manager', disable_signals=True)
+    asked = []              # a stop asked while starting (the action server is up before the end): kept
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(sig, lambda *_signal: asked.append(True))
     try:
         manager = PirateManager()
     except BadConfig as bad:        # a bad safety setting: refuse to start, say which
         rospy.logfatal('pirate_manager not started: %s (config/sequencer.yaml, the launch)', bad)
         rospy.signal_shutdown(str(bad))
         sys.exit(2)
-    signal.signal(signal.SIGINT, manager.shutdown)
-    signal.signal(signal.SIGTERM, manager.shutdown)
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(sig, manager.shutdown)
+    if asked:
+        manager.shutdown()
     rospy.spin()
