@@ -5,6 +5,7 @@ sensors are raw and quantised, gravity settles the robot, and a clamp
 reaches the angle the report's geometry predicts (derived here)."""
 import math
 import os
+import xml.etree.ElementTree as ET
 
 import mujoco
 import numpy
@@ -380,6 +381,31 @@ def test_sensor_noise_is_seeded():
     assert reads(7) != reads(8)
     quiet = TwinRobot(world('straight_90'))
     assert quiet.small_state(25) == quiet.small_state(25)
+
+
+def test_each_angle_sensor_reads_with_its_own_constant_offset_within_the_bound():
+    config = twin_model.load_config()
+    config['sensors'].update(angle_noise_counts=0.0, angle_bias_counts=10.0)
+
+    def offsets(seed):
+        robot = TwinRobot(world('straight_90'), seed=seed, config=config)
+        return [robot.small_state(joint.board)[tables.SS_ANGLE] - units.rad_to_encoder(robot.angle(joint.name))
+                for joint in tables.JOINTS if joint.name in tables.BEND_JOINTS]
+    assert offsets(3) == offsets(3)
+    assert all(abs(o) <= 10 for o in offsets(3)) and len(set(offsets(3) + offsets(4))) > 1
+    assert offsets(None) == [0] * len(tables.BEND_JOINTS), 'no seed: no noise and no offset'
+
+
+def test_a_bore_error_moves_every_wall_by_half_of_it():
+    def wall_distances(bore_error_m):
+        body = ET.Element('worldbody')
+        twin_pipes.WallBuilder(body, thickness=0.004, bore_error=bore_error_m).network(network.load(world('straight_90')))
+        centres = [[float(v) for v in geom.get('pos').split()] for geom in body.iter('geom')
+                   if geom.get('name', '').startswith('wall')]
+        return [math.hypot(y, z) for _, y, z in centres if math.hypot(y, z) > 0.01]     # the end cap: on the axis
+    nominal, wider = wall_distances(0.0), wall_distances(0.001)
+    assert nominal == pytest.approx([0.045 + 0.002] * len(nominal), abs=1e-6)
+    assert [w - n for w, n in zip(wider, nominal)] == pytest.approx([0.0005] * len(nominal), abs=1e-6)
 
 
 @pytest.mark.parametrize('roll', [0.0, 0.8, 2.5])

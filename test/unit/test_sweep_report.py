@@ -105,3 +105,13 @@ def test_the_table_keeps_the_order_the_sweep_declared_whatever_order_the_cases_f
         dict(record('a', 'succeeded', 2.0, group='first'), index=0)
     lines = report.table([late, early])
     assert lines[1].startswith('first') and lines[2].startswith('second')
+
+
+def test_by_robot_makes_a_row_per_drawn_robot_whatever_the_case():
+    drawn = [dict(record('r=%d robot=%d' % (roll, robot), outcome, 10.0, group='%d mm' % mm), params={'robot': robot})
+             for roll, robot, outcome, mm in ((0, 2, 'succeeded', 90), (15, 2, 'aborted', 110),
+                                              (0, 1, 'succeeded', 110), (15, 1, 'succeeded', 90))]
+    lines = report.table(report.by_robot(drawn + [record('r=0', 'aborted', 1.0)]))
+    rows = [line.split()[:5] for line in lines[1:]]
+    assert rows == [['nominal', 'twin', '1', '0%', '0'], ['robot', '1', '2', '100%', '2'],
+                    ['robot', '2', '2', '50%', '1']]

@@ -26,3 +26,13 @@ def test_a_clamp_straight_runs_in_a_worker_and_is_judged_by_ground_truth(tmp_pat
     assert 5.0 < record['robot_s'] < 30.0
     assert record['mujoco'] and record['commit'] != 'unknown'
     assert '90 mm straight, straight, plain' in out.getvalue()
+
+
+def test_drawn_robots_run_every_case_once_each_with_the_robot_in_its_key():
+    args = CLAMP_SWEEP.parser().parse_args(['--diameters', '90', '--targets', 'straight', 'left', '--poses',
+                                            'straight', '--first', '90', '--step', '180', '--robots', '3'])
+    found, settings = CLAMP_SWEEP.build(args)
+    assert sorted(c['key'] for c in found) == sorted(
+        'mm=90 target=%s pose=straight roll_deg=90 robot=%d' % (target, k) for target in ('straight', 'left')
+        for k in (1, 2, 3))
+    assert settings['robots_seed'] == 1

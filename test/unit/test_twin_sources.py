@@ -81,3 +81,24 @@ def test_the_table_has_a_row_per_constant_with_its_kind_and_range():
     assert '| `bend.gear_ratio` | 87 | report | 2.4.3.1, p. 14: worm |  |' in table
     assert 'refitted by `bench/sim_twin_calibration --fit`' in table
     assert table.endswith('4 constants: 1 report, 1 fitted, 2 estimate.')
+
+
+def test_a_drawn_robot_has_every_ranged_constant_inside_its_range_and_the_rest_nominal():
+    config, sources = twin_sources.load()
+    robot, changes = twin_sources.drawn(7, config, sources)
+    ranged = {c.name: c for c in twin_sources.constants(config, sources) if c.range is not None}
+    assert set(changes) == set(ranged)
+    for name, constant in ranged.items():
+        section, key = name.split('.')
+        value = robot[section][key]
+        pairs = constant.range if isinstance(constant.value, list) else [constant.range]
+        for element, (low, high) in zip(value if isinstance(value, list) else [value], pairs):
+            assert low <= element <= high, name
+        assert isinstance(value, type(constant.value)), name
+    for constant in twin_sources.constants(config, sources):
+        if constant.range is None:
+            section, key = constant.name.split('.')
+            assert robot[section][key] == constant.value, constant.name
+    assert twin_sources.drawn(7, config, sources)[0] == robot, 'robot 7 is drawn from its seed alone'
+    assert twin_sources.drawn(8, config, sources)[0] != robot
+    assert config == twin_sources.load()[0], 'the nominal constants are untouched'

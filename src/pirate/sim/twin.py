@@ -35,6 +35,7 @@ class TwinRobot(CommandLatch):
         self.data = mujoco.MjData(self.model)
         self.pipe_diameter_m = self.world.diameter_at(self.world.start_m)
         self._rng = random.Random(seed) if seed is not None and seed >= 0 else None
+        self._bias = _biases(seed, self.config['sensors']['angle_bias_counts'])
         self._qadr = {name: self.model.jnt_qposadr[self.model.joint(name).id] for name in twin_robot.chain_joints()}
         self._dofadr = {name: self.model.jnt_dofadr[self.model.joint(name).id] for name in twin_robot.chain_joints()}
         self._pose(joints, orientation)
@@ -134,7 +135,7 @@ class TwinRobot(CommandLatch):
         return self._rng.gauss(0.0, sigma) if self._rng else 0.0
 
     def _encoder(self, joint):
-        noise = self._noise(self.config['sensors']['angle_noise_counts'])
+        noise = self._noise(self.config['sensors']['angle_noise_counts']) + self._bias.get(joint, 0.0)
         return units.rad_to_encoder(self.angle(joint)) + int(round(noise))
 
     def _wheel_elements(self, board, data):
@@ -223,3 +224,14 @@ class TwinRobot(CommandLatch):
         return {'time': self.time, 'poses': dict(zip(twin_robot.TRUTH_BODIES, self.ground_truth_poses())),
                 'wheel_contacts': self.wheel_contacts(), 'roll': self.roll(),
                 'front_roll': self.roll(twin_robot.ROTATIONAL_FRONT)}
+
+
+def _biases(seed, bound_counts):
+    """{joint: counts} each AS5055's constant offset, drawn from ``seed``
+    within +-``bound_counts`` (its own generator, so the noise stays as
+    before); none without a seed."""
+    if seed is None or seed < 0 or not bound_counts:
+        return {}
+    rng = random.Random('angle bias %d' % seed)
+    return {joint.name: rng.uniform(-bound_counts, bound_counts) for joint in tables.JOINTS
+            if joint.angle_unit == tables.ENCODER and joint.board is not None}

@@ -93,7 +93,8 @@ def model_xml(world, config, roll):
     _defaults(root, config)
     body = ET.SubElement(root, 'worldbody')
     ET.SubElement(body, 'light', name=ROOM_LIGHT, pos='0 0 2', dir='0 0 -1')   # viewers only; cameras see by the LEDs
-    walls = twin_pipes.WallBuilder(body, config['physics']['wall_segments'], config['physics']['wall_thickness_m'])
+    walls = twin_pipes.WallBuilder(body, config['physics']['wall_segments'], config['physics']['wall_thickness_m'],
+                                   config['pipe']['bore_error_mm'] / 1000.0)
     walls.network(world)
     pos, axes = start_pose(world, config, roll)
     twin_robot.RobotBuilder(config).build(body, pos, axes)

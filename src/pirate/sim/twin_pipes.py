@@ -46,8 +46,9 @@ def _fmt(values):
 class WallBuilder(object):
     """Adds the geoms of a :class:`pirate.world.network.Network` to ``parent``."""
 
-    def __init__(self, parent, segments=24, thickness=0.004):
+    def __init__(self, parent, segments=24, thickness=0.004, bore_error=0.0):
         self.parent, self.segments, self.thickness = parent, segments, thickness
+        self.radius_error = bore_error / 2      # m: the real bore minus the world's diameter, halved
         self.count = 0
 
     def box(self, centre, x_axis, y_axis, half, name_hint='wall', rgba=None):
@@ -73,6 +74,7 @@ class WallBuilder(object):
         """Wall of a pipe along axes[0] from ``origin``; ``spans(radial)``
         returns the (start, end) intervals (m along the axis) of the wall
         at that radial direction; ``box`` adds each box (default :meth:`box`)."""
+        radius += self.radius_error
         half_width = radius * math.tan(math.pi / self.segments) + self.thickness / 2
         for radial, tangent in self._ring(axes):
             for start, end in spans(radial):
@@ -84,7 +86,7 @@ class WallBuilder(object):
     def plate(self, centre, axes, radius):
         """A disc closing a pipe end (an end cap), as one square plate."""
         self.box(_add(centre, axes[0], self.thickness / 2), axes[1], axes[2],
-                 (radius + self.thickness, radius + self.thickness, self.thickness / 2))
+                 (radius + self.radius_error + self.thickness,) * 2 + (self.thickness / 2,))
 
     def network(self, world):
         """Every piece and obstacle of ``world``."""
@@ -189,6 +191,7 @@ class WallBuilder(object):
         hole's rim, square to a wheel rolling over it (twin: lying on its
         side the front V's apex wheel stalled on it 3 mm into the hole of a
         T-joint open to that side)."""
+        radius += self.radius_error
         half_width = radius * math.tan(math.pi / self.segments) + self.thickness / 2
         across = math.sqrt(max(0.0, 1.0 - along_run * along_run))
         nearest = max(0.0, radius * across - half_width * abs(along_run))

@@ -62,7 +62,7 @@ def _fmt(values):
 
 
 def _cylinder_inertia(mass, radius, length):
-    """Diagonal inertia of a uniform cylinder along x (a module's shell)."""
+    """Diagonal inertia of a uniform cylinder along x (a module's shell, a wheel's disc)."""
     across = mass * (3 * radius * radius + length * length) / 12
     return (mass * radius * radius / 2, across, across)
 
@@ -106,8 +106,8 @@ class RobotBuilder(object):
         radius = self.geo['wheel_diameter_m'] / 2
         wheel = ET.SubElement(body, 'body', name='wheel_body_%d' % board, pos=_fmt((x, 0, 0)))
         mass = self.mass['wheel']
-        ET.SubElement(wheel, 'inertial', pos='0 0 0', mass='%g' % mass,
-                      diaginertia=_fmt((mass * radius ** 2 / 4, mass * radius ** 2 / 2, mass * radius ** 2 / 4)))
+        axial, across, _ = _cylinder_inertia(mass, radius, 2 * self.geo['wheel_half_width_m'])
+        ET.SubElement(wheel, 'inertial', pos='0 0 0', mass='%g' % mass, diaginertia=_fmt((across, axial, across)))
         ET.SubElement(wheel, 'joint', name=wheel_joint(board), type='hinge', axis='0 1 0')
         ET.SubElement(wheel, 'geom', type='cylinder', size=_fmt((radius, self.geo['wheel_half_width_m'])),
                       euler='1.5708 0 0', name='wheel_geom_%d' % board, **{'class': WHEEL_CLASS})

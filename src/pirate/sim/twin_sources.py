@@ -13,14 +13,17 @@ says, keyed by each constant's dotted name (``bend.stall_nm``), its
   (a list value: one [low, high] per element);
 - ``choice``: a modelling or numerical choice (``row``: the figure behind it).
 
-The twin reads only twin.yaml; the ranges are for an uncertainty sweep.
+The twin reads only twin.yaml; the ranges are for an uncertainty sweep
+(:func:`drawn`: a robot of the ranges, doc/sweeps.md#drawn-robots).
 :func:`problems` is what test/unit/test_twin_sources.py checks;
 :func:`markdown` is the table in doc/twin.md (``make docs``). Pure apart
 from :func:`load` and :func:`problems` reading files.
 """
 import collections
+import copy
 import io
 import os
+import random
 import re
 
 import yaml
@@ -55,6 +58,32 @@ def leaves(config, prefix=''):
         else:
             found[name] = value
     return found
+
+
+def drawn(seed, config=None, sources=None):
+    """(config, {name: value drawn}): config/twin.yaml (or ``config``) with
+    every constant that has a plausible range drawn uniformly from it (a list
+    element by element; an integer stays one), from ``seed`` alone."""
+    if config is None or sources is None:
+        config, sources = load()
+    rng, robot, changes = random.Random('robot %d' % seed), copy.deepcopy(config), collections.OrderedDict()
+    for constant in constants(config, sources):
+        if constant.range is None:
+            continue
+        pairs = constant.range if isinstance(constant.value, list) else [constant.range]
+        values = [_draw(rng, low, high, value) for (low, high), value in zip(pairs, _as_list(constant.value))]
+        section, key = constant.name.split('.')
+        robot[section][key] = changes[constant.name] = values if isinstance(constant.value, list) else values[0]
+    return robot, changes
+
+
+def _draw(rng, low, high, nominal):
+    value = rng.uniform(low, high)
+    return int(round(value)) if isinstance(nominal, int) and not isinstance(nominal, bool) else value
+
+
+def _as_list(value):
+    return value if isinstance(value, list) else [value]
 
 
 def _entry(sources, name):

@@ -3,9 +3,10 @@ from pirate.world import network
 
 
 def worlds(names):
-    """Errors of the worlds ``names`` (names or paths) that do not load, one string each."""
+    """Errors of the worlds ``names`` (names or paths; None: a case that runs no world) that do not load,
+    one string each."""
     errors = []
-    for name in sorted(set(names)):
+    for name in sorted(set(names) - {None}):
         try:
             network.load(network.world_path(name))
         except network.WorldError as bad:

@@ -29,6 +29,13 @@ def grouped(records):
     return list(groups.items())
 
 
+def by_robot(records):
+    """``records`` regrouped a row per robot they ran on (``robot`` k of
+    ``--robots``, doc/sweeps.md#drawn-robots; the nominal twin first)."""
+    return [dict(record, group='robot %d' % number if number else 'nominal twin', variant=None, index=number or 0)
+            for record, number in ((r, r['params'].get('robot')) for r in records)]
+
+
 def _place(record):
     index = record.get('index')
     return (0, index) if index is not None else (1, 0)
