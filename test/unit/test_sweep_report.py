@@ -115,3 +115,13 @@ def test_by_robot_makes_a_row_per_drawn_robot_whatever_the_case():
     rows = [line.split()[:5] for line in lines[1:]]
     assert rows == [['nominal', 'twin', '1', '0%', '0'], ['robot', '1', '2', '100%', '2'],
                     ['robot', '2', '2', '50%', '1']]
+
+
+def test_a_screen_keeps_the_robots_that_succeeded_in_all_of_it_and_the_nominal_twin():
+    def on(robot, outcome):
+        return dict(record('r robot=%s' % robot, outcome, 1.0), params={'robot': robot} if robot else {})
+    screen = [on(1, 'succeeded'), on(1, 'succeeded'), on(2, 'succeeded'), on(2, 'aborted'), on(3, 'succeeded')]
+    kept, passed = report.screened([on(1, 'aborted'), on(2, 'succeeded'), on(4, 'succeeded'), on(None, 'aborted')],
+                                   screen)
+    assert passed == [1, 3]
+    assert [(r['params'].get('robot'), r['outcome']) for r in kept] == [(1, 'aborted'), (None, 'aborted')]

@@ -36,6 +36,16 @@ def by_robot(records):
             for record, number in ((r, r['params'].get('robot')) for r in records)]
 
 
+def screened(records, screen):
+    """(records of the robots that succeeded in every record of ``screen``
+    they have there, those robots' numbers): a sweep restricted to the drawn
+    robots that do what another sweep asks (e.g. Chapter 6's experiments,
+    which the real robot did). Records of the nominal twin stay."""
+    failed = {r['params'].get('robot') for r in screen if r['outcome'] != SUCCESS}
+    passed = {r['params'].get('robot') for r in screen} - failed - {None}
+    return [r for r in records if r['params'].get('robot') in passed | {None}], sorted(passed)
+
+
 def _place(record):
     index = record.get('index')
     return (0, index) if index is not None else (1, 0)
