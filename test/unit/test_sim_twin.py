@@ -209,10 +209,13 @@ def test_tee_entered_through_its_run_and_left_by_its_branch_is_open_ahead_and_th
         assert radius - 1e-6 <= _ray(robot, ahead, across) <= wall + 1e-6
 
 
-@pytest.mark.parametrize('diameter', [90, 110])
-def test_clamp_reaches_the_angle_the_geometry_predicts(diameter):
-    apex = math.asin((diameter / 1000.0 - WHEEL_D_M) / L_M)   # eq 2.1: the V's apex wheel on the wall
-    robot = TwinRobot(world('straight_%d' % diameter))
+@pytest.mark.parametrize('name, diameter, bore_mm', [
+    ('straight_90', 90, 90.0), ('straight_110', 110, 110.0), ('straight_90_sdr26', 90, 83.0)])
+def test_clamp_reaches_the_angle_the_geometry_predicts(name, diameter, bore_mm):
+    """In the world's bore: a plain pipe's diameter, a real pipe's (its wall inside its size)."""
+    apex = math.asin((bore_mm / 1000.0 - WHEEL_D_M) / L_M)   # eq 2.1: the V's apex wheel on the wall
+    robot = TwinRobot(world(name))
+    assert robot.pipe_diameter_m == pytest.approx(bore_mm / 1000.0)
     robot.command(*arrays({'front_tilt': 32}))
     lift = FRONT_LIFT[diameter]
     run_until(robot, lambda r: r.angle('front_tilt') >= lift, 10.0)

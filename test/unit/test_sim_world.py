@@ -122,6 +122,14 @@ STRAIGHT = {'type': 'straight', 'length_mm': 500}
     ({'pieces': [STRAIGHT], 'start': {'at_mm': 800}}, 'start', 'not inside a straight'),
     ({'pieces': []}, 'pieces', 'non-empty'),
     ({'pipes': [STRAIGHT]}, 'top-level', 'unknown'),
+    ({'pieces': [STRAIGHT], 'pipe': {'outer_mm': 90}}, 'pipe', 'wall_mm or sdr'),
+    ({'pieces': [STRAIGHT], 'pipe': {'outer_mm': 90, 'sdr': 26, 'wall_mm': 3.5}}, 'pipe', 'wall_mm or sdr'),
+    ({'pieces': [STRAIGHT], 'pipe': {'outer_mm': 110, 'sdr': 26}}, 'pipe', 'must be the size'),
+    ({'pieces': [STRAIGHT, dict(STRAIGHT, diameter_mm=110)], 'pipe': {'outer_mm': 90, 'sdr': 26}}, 'pipe',
+     'must be the size'),
+    ({'pieces': [STRAIGHT], 'pipe': {'outer_mm': 90, 'wall_mm': 'thick'}}, 'pipe', 'not a number'),
+    ({'pieces': [STRAIGHT], 'pipe': {'outer_mm': 90, 'sdr': 25}}, 'pipe', 'sdr 25 is not a standard series'),
+    ({'pieces': [STRAIGHT], 'pipe': {'outer_mm': 90, 'wall_mm': 15}}, 'pipe', 'robot fits in'),
 ])
 def test_bad_world_is_refused_with_file_entry_and_reason(data, entry, reason, tmp_path):
     message = _refusal(data, tmp_path)
@@ -133,3 +141,21 @@ def test_unreadable_file_is_refused(tmp_path):
     path.write_text('pieces: [ {type: straight')
     with pytest.raises(network.WorldError, match='broken.yaml: cannot read'):
         network.load(str(path))
+
+
+@pytest.mark.parametrize('outer', [90, 110])
+def test_every_standard_wall_is_about_its_outer_diameter_over_its_ratio(outer):
+    """The listed walls are ISO 4065's: outer / SDR rounded up, within a tenth and a rounding of the series."""
+    for sdr, wall in network.STANDARD_WALLS_MM[outer].items():
+        assert outer / sdr - 0.05 <= wall <= outer / sdr + 0.15, (outer, sdr, wall)
+
+
+def test_a_world_of_a_real_pipe_keeps_its_size_for_the_layout_and_says_its_bore(tmp_path):
+    sdr26 = network.load(os.path.join(WORLDS, 'straight_90_sdr26.yaml'))
+    nominal = network.load(os.path.join(WORLDS, 'straight_90.yaml'))
+    assert sdr26.bore_offset_m == pytest.approx(-0.007) and nominal.bore_offset_m == 0.0
+    assert sdr26.diameter_at(0.4) == nominal.diameter_at(0.4) == pytest.approx(0.09)
+    assert [p.exit.origin for p in sdr26.pieces] == [p.exit.origin for p in nominal.pieces]
+    path = tmp_path / 'walled.yaml'
+    path.write_text(yaml.safe_dump({'pieces': [STRAIGHT], 'pipe': {'outer_mm': 90, 'wall_mm': 2.7}}))
+    assert network.load(str(path)).bore_offset_m == pytest.approx(-0.0054)

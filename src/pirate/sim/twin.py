@@ -33,7 +33,7 @@ class TwinRobot(CommandLatch):
         self.config = config or twin_model.load_config()
         self.model = mujoco.MjModel.from_xml_string(twin_model.model_xml(self.world, self.config, orientation))
         self.data = mujoco.MjData(self.model)
-        self.pipe_diameter_m = self.world.diameter_at(self.world.start_m)
+        self.pipe_diameter_m = twin_model.bore_at(self.world, self.config, self.world.start_m)   # where the walls are
         self._rng = random.Random(seed) if seed is not None and seed >= 0 else None
         self._bias = _biases(seed, self.config['sensors']['angle_bias_counts'])
         self._qadr = {name: self.model.jnt_qposadr[self.model.joint(name).id] for name in twin_robot.chain_joints()}

@@ -30,11 +30,22 @@ def load_config(path=CONFIG_FILE):
         return yaml.safe_load(stream)
 
 
+def bore_error_m(world, config):
+    """The twin's bore minus the world's diameter, m: the world's pipe (its
+    wall, ``pipe:``) and the twin's ``pipe.bore_error_mm`` (a tolerance)."""
+    return world.bore_offset_m + config['pipe']['bore_error_mm'] / 1000.0
+
+
+def bore_at(world, config, along_m):
+    """The twin's bore (m) at ``along_m``: where its walls stand."""
+    return world.diameter_at(along_m) + bore_error_m(world, config)
+
+
 def start_pose(world, config, roll):
     """Root position and axes: the robot's middle at the world's start,
     its wheels just above the pipe floor, rolled by ``roll`` (Fig 4.7)."""
     _, frame = world.locate(world.start_m)
-    radius = world.diameter_at(world.start_m) / 2
+    radius = bore_at(world, config, world.start_m) / 2
     clearance = config['geometry']['wheel_diameter_m'] / 2 + 0.003
     pos = tuple(o - z * (radius - clearance) for o, z in zip(frame.origin, frame.axes[2]))
     return pos, twin_robot.roll_axes(roll)
@@ -94,7 +105,7 @@ def model_xml(world, config, roll):
     body = ET.SubElement(root, 'worldbody')
     ET.SubElement(body, 'light', name=ROOM_LIGHT, pos='0 0 2', dir='0 0 -1')   # viewers only; cameras see by the LEDs
     walls = twin_pipes.WallBuilder(body, config['physics']['wall_segments'], config['physics']['wall_thickness_m'],
-                                   config['pipe']['bore_error_mm'] / 1000.0)
+                                   bore_error_m(world, config))
     walls.network(world)
     pos, axes = start_pose(world, config, roll)
     twin_robot.RobotBuilder(config).build(body, pos, axes)

@@ -1,5 +1,5 @@
-"""The report's Chapter 6 clamp runs as primitive sequences (Tables 6.1-6.3),
-and the one way a physical run may differ from them: a re-adjust pass (or
+"""The report's Chapter 6 clamp runs as primitive sequences (Tables 6.1-6.3)
+and the angles they reached (Table 6.5), and the one way a physical run may differ from them: a re-adjust pass (or
 each of Table 6.3's two) run a whole number of times instead of once.
 
 The physics twin settles and slips where the real robot did not in the
@@ -22,6 +22,19 @@ CUSTOM_RE_ADJUST = ['unclamp rear partial', 'rotate rear', 'clamp rear custom', 
 #: Table 6.3: non-nominal (custom clamps, one custom pass, then Table 6.2's pass).
 CLAMP_NON_NOMINAL = (['clamp rear custom', 'rotate front', 'move front first', 'clamp front custom first',
                       'move front later'] + CUSTOM_RE_ADJUST + RE_ADJUST)
+
+#: Table 6.5 averages: primitive -> {joint: rad}.
+TABLE_6_5 = {
+    'clamp front': {'bend_i': -0.85, 'bend_ii': 0.42}, 'clamp rear': {'bend_iv': -0.82, 'bend_iii': 0.44},
+    'unclamp front partial': {'bend_i': -0.34, 'bend_ii': 0.20},
+    'unclamp rear partial': {'bend_iv': -0.33, 'bend_iii': 0.20},
+    'unclamp rear': {'bend_iv': 0.06, 'bend_iii': -0.09}, 'unclamp front': {'bend_i': 0.00, 'bend_ii': 0.00},
+    'clamp rear custom': {'bend_iv': -0.79, 'bend_iii': 0.43},
+    'clamp front custom first': {'bend_i': -0.77, 'bend_ii': 0.34},
+    'clamp front custom': {'bend_i': -0.77, 'bend_ii': 0.36},
+    'move front': {'front_tilt': 0.445}, 'move front first': {'front_tilt': 0.265},
+    'move front later': {'front_tilt': 0.38}, 'rotate front (align)': {'rotation': 0.01},
+}
 
 
 #: Any re-adjust pass of Table D.1: each clamp full or custom and the front's

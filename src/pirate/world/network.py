@@ -7,6 +7,7 @@ format"); in short::
 
     name: network_90
     diameter_mm: 90                  # default inner diameter (90 or 110)
+    pipe: {outer_mm: 90, sdr: 26}    # optional: the real pipe, its walls inside the size (see below)
     pieces:                          # in travel order, from the robot's start
       - {type: straight, length_mm: 800}
       - {type: mitre, turn: left}    # left | right | up | down
@@ -40,6 +41,14 @@ allowed) seen looking along the travel direction, 12 at the top, 3 on the
 right, and ``size_mm`` its extent (a hole's or patch's diameter, a crack's
 or pool's length, a joint's offset, a branch's reach into the pipe).
 
+``pipe`` names the pipe as its standard does (plastic pipes by their outer
+diameter): ``outer_mm``, the size whose guards the robot uses (the world's
+``diameter_mm``), and its wall, ``wall_mm`` or its standard dimension ratio
+``sdr`` (about outer / wall; the wall the standards list,
+:data:`STANDARD_WALLS_MM`). The bore is ``outer_mm`` - 2 wall; the pieces keep the size as
+their layout (a fitting's centre lines) and the twin stands its walls at
+the bore. Without ``pipe`` the bore is the diameter.
+
 Each piece has an entry frame; its exit frame is where the next piece
 starts. Frames are (origin, 3x3 rotation as rows of the x/y/z axes) in
 metres: x along the travel direction, y to the left, z up.
@@ -53,6 +62,13 @@ import yaml
 from pirate import paths
 
 DIAMETERS_MM = (90, 110)
+#: Nominal walls (mm) of plastic pipes by outer diameter and standard
+#: dimension ratio: ISO 4065's series as EN 12201-2 / EN 1555-2 (PE) and
+#: EN 1452-2 (PVC-U: SDR 41, 33, 26, 21, 17 are S 20, 16, 12.5, 10, 8) list them.
+STANDARD_WALLS_MM = {
+    90: {41: 2.2, 33: 2.8, 26: 3.5, 21: 4.3, 17: 5.4, 13.6: 6.7, 11: 8.2},
+    110: {41: 2.7, 33: 3.4, 26: 4.2, 21: 5.3, 17: 6.6, 13.6: 8.1, 11: 10.0},
+}
 WORLDS_DIR = os.path.join(paths.CONFIG_DIR, 'worlds')
 TURNS = {'left': ((0, 0, 1), 1), 'right': ((0, 0, 1), -1), 'up': ((0, 1, 0), -1), 'down': ((0, 1, 0), 1)}
 PIECE_KEYS = {
@@ -121,8 +137,9 @@ NEAR_WINDOW_M = 0.2
 class Network(object):
     """Pieces and obstacles in travel order, laid out from the origin."""
 
-    def __init__(self, name, pieces, obstacles, start_m, source='<world>', points=None, defects=()):
+    def __init__(self, name, pieces, obstacles, start_m, source='<world>', points=None, defects=(), bore_offset_m=0.0):
         self.name, self.pieces, self.obstacles = name, pieces, obstacles
+        self.bore_offset_m = bore_offset_m      # the bore minus the size, m (``pipe``; 0 without)
         self.defects = list(defects)
         self.start_m, self.source = start_m, source
         self.points = dict(points or {})    # name -> metres along the path
@@ -190,7 +207,7 @@ def build(data, source='<world>'):
     """Check ``data`` (the parsed YAML) and lay the network out."""
     if not isinstance(data, dict):
         raise WorldError('%s: a world is a mapping with pieces, got %r' % (source, type(data).__name__))
-    unknown = set(data) - {'name', 'diameter_mm', 'pieces', 'obstacles', 'defects', 'start', 'points'}
+    unknown = set(data) - {'name', 'diameter_mm', 'pipe', 'pieces', 'obstacles', 'defects', 'start', 'points'}
     if unknown:
         raise WorldError('%s: unknown top-level key(s) %s' % (source, sorted(unknown)))
     default_mm = _diameter(data.get('diameter_mm', 90), source, 'diameter_mm')
@@ -207,7 +224,44 @@ def build(data, source='<world>'):
         raise WorldError('%s: start: at_mm %.0f is not inside a straight piece' % (source, start_m * 1000))
     points = _points(data.get('points') or [], total, source)
     defects = _defects(data.get('defects') or [], pieces, source)
-    return Network(data.get('name', source), pieces, obstacles, start_m, source, points, defects)
+    bore_offset_m = _bore_offset(data.get('pipe'), default_mm, pieces, source)
+    return Network(data.get('name', source), pieces, obstacles, start_m, source, points, defects, bore_offset_m)
+
+
+def pipe_wall_mm(outer_mm, sdr):
+    """The nominal wall (mm) of a plastic pipe of ``outer_mm`` and standard
+    dimension ratio ``sdr`` (:data:`STANDARD_WALLS_MM`); raises ValueError
+    for a ratio the standards do not list at that size."""
+    walls = STANDARD_WALLS_MM.get(outer_mm, {})
+    if sdr not in walls:
+        raise ValueError('sdr %r is not a standard series of a %s mm pipe (one of %s; or give wall_mm)'
+                         % (sdr, outer_mm, ', '.join('%g' % k for k in sorted(walls))))
+    return walls[sdr]
+
+
+def _bore_offset(spec, size_mm, pieces, source):
+    """The bore minus the size (m) of a world's ``pipe``, checked; 0 without one."""
+    if spec is None:
+        return 0.0
+    if not isinstance(spec, dict) or set(spec) - {'outer_mm', 'wall_mm', 'sdr'} or 'outer_mm' not in spec \
+            or len(set(spec) & {'wall_mm', 'sdr'}) != 1:
+        raise WorldError('%s: pipe: {outer_mm, and wall_mm or sdr} is needed, got %r' % (source, spec))
+    if spec['outer_mm'] != size_mm or any(abs(p.diameter * 1000 - size_mm) > 1e-6 for p in pieces):
+        raise WorldError('%s: pipe: outer_mm %r must be the size of every piece, diameter_mm %d'
+                         % (source, spec['outer_mm'], size_mm))
+    if 'sdr' in spec:
+        try:
+            wall_mm = pipe_wall_mm(size_mm, spec['sdr'])
+        except ValueError as bad:
+            raise WorldError('%s: pipe: %s' % (source, bad))
+    elif isinstance(spec['wall_mm'], (int, float)) and not isinstance(spec['wall_mm'], bool):
+        wall_mm = float(spec['wall_mm'])
+    else:
+        raise WorldError('%s: pipe: wall_mm %r is not a number' % (source, spec['wall_mm']))
+    if not 0.0 < wall_mm < size_mm / 8.0:
+        raise WorldError('%s: pipe: a wall of %.1f mm in a %d mm pipe is not a pipe the robot fits in'
+                         % (source, wall_mm, size_mm))
+    return -2.0 * wall_mm / 1000.0
 
 
 def _defects(specs, pieces, source):
