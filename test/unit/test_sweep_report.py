@@ -125,3 +125,12 @@ def test_a_screen_keeps_the_robots_that_succeeded_in_all_of_it_and_the_nominal_t
                                    screen)
     assert passed == [1, 3]
     assert [(r['params'].get('robot'), r['outcome']) for r in kept] == [(1, 'aborted'), (None, 'aborted')]
+
+
+def test_reasons_count_each_failure_once_whatever_its_numbers():
+    runs = [dict(record('r=%d' % k, outcome, 1.0), reason=why) for k, (outcome, why) in enumerate([
+        ('aborted', 'bend_iv presses the wall at -0.62 rad, short of -0.68'), ('succeeded', 'fine'),
+        ('aborted', 'bend_iv presses the wall at -0.64 rad, short of -0.68'), ('livelock', 'did not finish in 60')])]
+    assert report.reasons_lines(runs) == ['90 mm straight',
+                                          '    2 aborted: bend_iv presses the wall at # rad, short of #',
+                                          '    1 livelock: did not finish in #']

@@ -7,6 +7,8 @@ bench's figures (median and range). Two sweeps: the same rows side by side,
 a row whose success, false successes or durations differ flagged ``*``,
 then every case whose outcome differs.
 """
+import collections
+import re
 import statistics
 
 SUCCESS, FALSE_SUCCESS = 'succeeded', 'FALSE success'
@@ -15,6 +17,8 @@ ORDER = (SUCCESS, FALSE_SUCCESS, 'refused', 'aborted', 'preempted', 'livelock', 
 #: Durations further apart than this fraction (and a Mega cycle) are a difference.
 DURATION_TOLERANCE = 0.10
 MEGA_CYCLE_S = 0.1
+#: A number in a reason (a guard's value, a time, a count): '#' when reasons are counted alike.
+NUMBER = re.compile(r'[-+]?\d+(\.\d+)?')
 
 
 def label(record):
@@ -107,6 +111,19 @@ def bench_figures(runs):
         if values:
             parts.append('%s %.4g [%.4g, %.4g]' % (name, statistics.median(values), min(values), max(values)))
     return parts
+
+
+def reasons_lines(records, width=100):
+    """Per group, why its runs did not succeed: each reason once, its numbers
+    as '#' (a guard's value, a time), most frequent first, with its count and outcome."""
+    lines = []
+    for name, runs in grouped(records):
+        why = collections.Counter((r['outcome'], NUMBER.sub('#', r.get('reason') or '')[:width])
+                                  for r in runs if r['outcome'] != SUCCESS)
+        if why:
+            lines.append(name)
+            lines.extend('  %3d %s: %s' % (count, outcome, reason) for (outcome, reason), count in why.most_common())
+    return lines
 
 
 def cases_lines(records):
