@@ -118,9 +118,10 @@ LEAD_BY_SIGN = 'negative: backwards, the rear leading'
 #: Why a turn's speed has a range (config/guards_<mm>.yaml turn goal_speed_min / goal_speed_max;
 #: bench/junction_turn_probe --speed).
 SPEED_WHY = ("measured in the twin: faster, the rear's wheels pushed the front V, clamped at the corner, on "
-             'along the new pipe and the middle never swung round (90 mm), or the front stood up to 140 s '
-             "against a mitre's far wall (110 mm); slower, the drive into the new pipe stood (90 mm) or a "
-             'T-joint was clamped short of its corner or rolled off the side (110 mm)')
+             'along the new pipe and the middle never swung round (90 mm; at 30 mm/s a robot of stronger wheels '
+             "drawn from the twin's ranges), or the front stood up to 140 s against a mitre's far wall (110 mm); "
+             'slower, the drive into the new pipe stood (90 mm) or a T-joint was clamped short of its corner or '
+             'rolled off the side (110 mm)')
 
 
 #: What a resumed turn says it went on with, by the record's fact ('{trail}': the trailing part).
