@@ -427,6 +427,20 @@ def test_the_torque_demand_is_setpoint_within_its_limit_minus_the_spring(rig):
     assert prims.torque_demand('bend_i', at(-88.0)) == 0.0
 
 
+def test_a_bend_pressing_a_wall_short_of_its_setpoint_is_not_driven(rig):
+    """Its motor at its stall short of the clamp setpoint stands still by
+    physics: pressing the way it is driven with a clamp's effort it is not
+    counted as driven; the same spring against an opening setpoint is."""
+    prims, _, _ = rig
+    prims.control.set_mode('bend_i', 'torque')
+    prims.setpoint.set('bend_i', 256)
+    at = lambda effort: _bend_i(1.0, -0.8, effort)     # noqa: E731
+    assert prims.torque_demand('bend_i', at(220.0)) == 0.0           # presses the wall at 220 of 256
+    assert prims.torque_demand('bend_i', at(150.0)) > 0.0            # short of a clamp's effort: driven
+    prims.setpoint.set('bend_i', -100)                               # opening, the spring still clamped
+    assert prims.torque_demand('bend_i', at(220.0)) > 0.0
+
+
 def test_a_bend_whose_board_does_not_answer_is_not_called_frozen():
     """Its values are held because its board is silent: the state says so
     (board N silent), not the frozen check (the silent-board rostest at x2)."""

@@ -161,10 +161,22 @@ class MotionPrimitives(object):
         limit = self.limit.get(joint) if self.limit is not None else safety.NO_LIMIT
         counts = max(-limit, min(limit, self.setpoint.get(joint)))
         effort = view.efforts.get(joint, 0.0)
+        if self._holds_a_wall(counts, effort):
+            return 0.0
         errors = [abs((units.spring_to_mnm(counts) if scale is None else scale * counts) - effort)
                   for scale in REST_MNM_PER_COUNT]
         error = min(errors)
         return error if error > FROZEN_DEMAND_MNM + FROZEN_DEMAND_SHARE * abs(units.spring_to_mnm(counts)) else 0.0
+
+    def _holds_a_wall(self, counts, effort):
+        """A bend whose spring already pushes the way its setpoint drives it
+        with a clamp's effort (``spring_clamp_mnm``) presses a wall: where its
+        motor reaches its stall short of the setpoint it stands still by
+        physics, not because a sensor froze (twin, a robot drawn with a weak
+        bend motor: a rear clamp held at 220 mNm for 256 counts)."""
+        if self.guards is None or not counts:
+            return False
+        return effort * (1 if counts > 0 else -1) >= clamp_state.spring_clamp_mnm(self.guards)
 
     def use(self, guards):
         """Work with the guards of the goal's pipe diameter."""
