@@ -163,17 +163,19 @@ def bench_commands():
         return [(name, OPTION.findall(rest)) for name, rest in BENCH_COMMAND.findall(f.read())]
 
 
-#: The options every bench that runs through the sweep runner takes.
-SWEEP_OPTIONS = os.path.join(ROOT, 'src', 'pirate', 'sweep', 'cli.py')
+#: The options every bench that runs through the sweep runner takes, and a sweep of drawn robots.
+SWEEP_OPTIONS = {'sweep_cli.add_arguments': os.path.join(ROOT, 'src', 'pirate', 'sweep', 'cli.py'),
+                 'robots.add_arguments': os.path.join(ROOT, 'src', 'pirate', 'sweep', 'robots.py')}
 
 
 def bench_source(path):
-    """A bench's text, with the sweep runner's options when it uses them."""
+    """A bench's text, with the shared options it takes (the sweep runner's, drawn robots')."""
     with open(path) as f:
         source = f.read()
-    if 'sweep_cli.add_arguments' in source:
-        with open(SWEEP_OPTIONS) as f:
-            source += f.read()
+    for call, module in SWEEP_OPTIONS.items():
+        if call in source:
+            with open(module) as f:
+                source += f.read()
     return source
 
 
