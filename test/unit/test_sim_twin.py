@@ -411,6 +411,20 @@ def test_a_bore_error_moves_every_wall_by_half_of_it():
     assert [w - n for w, n in zip(wider, nominal)] == pytest.approx([0.0005] * len(nominal), abs=1e-6)
 
 
+def test_in_a_real_pipe_obstacles_stand_on_its_bore_and_a_reduction_keeps_its_own():
+    world = network.build({'diameter_mm': 90, 'pipe': {'outer_mm': 90, 'sdr': 26},
+                           'pieces': [{'type': 'straight', 'length_mm': 1500}],
+                           'obstacles': [{'type': 'step', 'at_mm': 600, 'height_mm': 4},
+                                         {'type': 'reduction', 'at_mm': 900, 'diameter_mm': 80}]})
+    body = ET.Element('worldbody')
+    twin_pipes.WallBuilder(body, thickness=0.004, bore_error=world.bore_offset_m).network(world)
+    geoms = {geom.get('name'): [float(v) for v in geom.get('pos').split()] for geom in body.iter('geom')}
+    step = next(pos for name, pos in geoms.items() if name.startswith('step'))
+    assert step[2] == pytest.approx(-(0.0415 - 0.002))                  # on the 83 mm bore's floor
+    reduction = [math.hypot(y, z) for name, (x, y, z) in geoms.items() if name.startswith('wall') and 0.89 < x < 0.96]
+    assert reduction and reduction == pytest.approx([0.040 + 0.002] * len(reduction))
+
+
 @pytest.mark.parametrize('roll', [0.0, 0.8, 2.5])
 def test_gravity_brings_a_released_robot_to_rest_on_the_floor(roll):
     robot = TwinRobot(world('straight_90'), orientation=roll, settle_s=0.0)

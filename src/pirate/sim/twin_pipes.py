@@ -48,7 +48,7 @@ class WallBuilder(object):
 
     def __init__(self, parent, segments=24, thickness=0.004, bore_error=0.0):
         self.parent, self.segments, self.thickness = parent, segments, thickness
-        self.radius_error = bore_error / 2      # m: the real bore minus the world's diameter, halved
+        self.radius_error = bore_error / 2      # m: the real bore minus the world's diameter, halved (wall_radius)
         self.count = 0
 
     def box(self, centre, x_axis, y_axis, half, name_hint='wall', rgba=None):
@@ -74,7 +74,6 @@ class WallBuilder(object):
         """Wall of a pipe along axes[0] from ``origin``; ``spans(radial)``
         returns the (start, end) intervals (m along the axis) of the wall
         at that radial direction; ``box`` adds each box (default :meth:`box`)."""
-        radius += self.radius_error
         half_width = radius * math.tan(math.pi / self.segments) + self.thickness / 2
         for radial, tangent in self._ring(axes):
             for start, end in spans(radial):
@@ -86,7 +85,7 @@ class WallBuilder(object):
     def plate(self, centre, axes, radius):
         """A disc closing a pipe end (an end cap), as one square plate."""
         self.box(_add(centre, axes[0], self.thickness / 2), axes[1], axes[2],
-                 (radius + self.radius_error + self.thickness,) * 2 + (self.thickness / 2,))
+                 (radius + self.thickness, radius + self.thickness, self.thickness / 2))
 
     def network(self, world):
         """Every piece and obstacle of ``world``."""
@@ -105,7 +104,7 @@ class WallBuilder(object):
 
     def defect(self, piece, defect):
         """A defect's visual geoms on ``piece``'s wall (a straight segment)."""
-        axes, radius = piece.entry.axes, piece.diameter / 2
+        axes, radius = piece.entry.axes, self.wall_radius(piece)
         radial = clock_direction(axes, defect.clock)
         centre = _add(piece.entry.origin, axes[0], defect.at)
         tangent = tuple(a * b - c * d for a, b, c, d in (
@@ -134,28 +133,33 @@ class WallBuilder(object):
         self._visual(dict(type='cylinder', pos=_fmt(inside), zaxis=_fmt(radial),     # a hole, a patch
                           size=_fmt((size / 2, DEFECT_FILM_M))), kind)
 
+    def wall_radius(self, piece):
+        """Where ``piece``'s wall stands (m from its axis): half its size as
+        laid out, plus half the bore's error (a real pipe's wall, a tolerance)."""
+        return piece.diameter / 2 + self.radius_error
+
     def _straight(self, piece):
-        self.tube(piece.entry.origin, piece.entry.axes, piece.diameter / 2,
+        self.tube(piece.entry.origin, piece.entry.axes, self.wall_radius(piece),
                   lambda radial: [(0.0, piece.length)])
 
     def _cap(self, piece):
-        self.plate(piece.entry.origin, piece.entry.axes, piece.diameter / 2)
+        self.plate(piece.entry.origin, piece.entry.axes, self.wall_radius(piece))
 
     def _mitre(self, piece):
-        radius = piece.diameter / 2
+        radius, wall = piece.diameter / 2, self.wall_radius(piece)
         x_in, x_out = piece.entry.axes[0], piece.exit.axes[0]
-        # Leg in: cut where (s - R) + R (radial . x_out) = 0; leg out likewise.
-        self.tube(piece.entry.origin, piece.entry.axes, radius,
-                  lambda r: [(0.0, radius - radius * _dot(r, x_out))])
+        # Leg in: cut where (s - R) + r (radial . x_out) = 0 (R the corner's offset, r the wall's); leg out likewise.
+        self.tube(piece.entry.origin, piece.entry.axes, wall,
+                  lambda r: [(0.0, radius - wall * _dot(r, x_out))])
         back = tuple(tuple(-c for c in axis) for axis in piece.exit.axes[:2]) + (piece.exit.axes[2],)
-        self.tube(piece.exit.origin, back, radius,
-                  lambda r: [(0.0, radius + radius * _dot(r, x_in))])
+        self.tube(piece.exit.origin, back, wall,
+                  lambda r: [(0.0, radius + wall * _dot(r, x_in))])
 
     def _tee(self, piece):
         """Run with a hole where the branch meets it; branch cut to the run.
         The pipe the path does not take (the stub) reaches one radius past
         the other pipe's wall, open."""
-        radius = piece.diameter / 2
+        radius, wall = piece.diameter / 2, self.wall_radius(piece)
         centre = _add(piece.entry.origin, piece.entry.axes[0], radius)
         if piece.spec['enter'] == 'branch':          # the run across, the path leaving along it
             run_axes, run_span = piece.exit.axes, (-2 * radius, radius)
@@ -174,11 +178,11 @@ class WallBuilder(object):
             facing = _dot(radial, branch_axis)
             if facing <= 0:
                 return [(0.0, length)]
-            return [(0.0, hole_mid - radius * facing), (hole_mid + radius * facing, length)]
-        self.tube(start, run_axes, radius, run_spans)
+            return [(0.0, hole_mid - wall * facing), (hole_mid + wall * facing, length)]
+        self.tube(start, run_axes, wall, run_spans)
         branch_axes = _frame_along(branch_axis, run_axes[0])
-        self.tube(centre, branch_axes, radius,
-                  lambda r: [(self._clear_of_run(radius, _dot(r, run_axes[0])), branch_end)])
+        self.tube(centre, branch_axes, wall,
+                  lambda r: [(self._clear_of_run(wall, _dot(r, run_axes[0])), branch_end)])
 
     def _clear_of_run(self, radius, along_run):
         """Where a branch wall box must start (m from the run's axis along the
@@ -191,7 +195,6 @@ class WallBuilder(object):
         hole's rim, square to a wheel rolling over it (twin: lying on its
         side the front V's apex wheel stalled on it 3 mm into the hole of a
         T-joint open to that side)."""
-        radius += self.radius_error
         half_width = radius * math.tan(math.pi / self.segments) + self.thickness / 2
         across = math.sqrt(max(0.0, 1.0 - along_run * along_run))
         nearest = max(0.0, radius * across - half_width * abs(along_run))
@@ -199,7 +202,7 @@ class WallBuilder(object):
 
     def _floor(self, world, obstacle):
         index, frame = world.locate(obstacle['at_m'])
-        return world.pieces[index].diameter / 2, frame
+        return self.wall_radius(world.pieces[index]), frame
 
     def _obstacle_step(self, world, obstacle):
         radius, frame = self._floor(world, obstacle)
