@@ -44,7 +44,7 @@ ALLOWED = {
     'inspection': {'robot', 'state', 'world', 'supervisory'},   # findings placed on the map, the report
     'launch_check': {'world'},   # operator.launch's arguments: the worlds there are
     'testing': {'robot', 'state', 'sequencer', 'supervisory', 'world', 'panel', 'link', 'sim', 'viz',
-                'manager', 'camera', 'inspection'},
+                'manager', 'camera', 'inspection', 'sweep'},   # sweep: drawn robots as a sweep's cases
 }
 
 #: The modules that import ROS. Each is named *_node.py or *_ros.py.

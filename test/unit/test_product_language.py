@@ -165,7 +165,7 @@ def bench_commands():
 
 #: The options every bench that runs through the sweep runner takes, and a sweep of drawn robots.
 SWEEP_OPTIONS = {'sweep_cli.add_arguments': os.path.join(ROOT, 'src', 'pirate', 'sweep', 'cli.py'),
-                 'robots.add_arguments': os.path.join(ROOT, 'src', 'pirate', 'sweep', 'robots.py')}
+                 'drawn_robots.add_arguments': os.path.join(ROOT, 'src', 'pirate', 'testing', 'drawn_robots.py')}
 
 
 def bench_source(path):

@@ -2,7 +2,7 @@
 import os
 from importlib.machinery import SourceFileLoader
 
-from pirate.sweep import robots
+from pirate.testing import drawn_robots
 
 BENCH = SourceFileLoader('twin_robots', os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..',
                                                      'bench', 'twin_robots')).load_module()
@@ -25,7 +25,7 @@ def test_success_counts_the_runs_of_drawn_robots_only():
 
 def test_the_constant_the_outcomes_follow_comes_first_with_its_halves():
     seed = 3
-    friction = {n: robots.constants(seed, n)[0]['friction.wheel'] for n in range(1, 9)}
+    friction = {n: drawn_robots.constants(seed, n)[0]['friction.wheel'] for n in range(1, 9)}
     order = sorted(friction, key=friction.get)
     rates = {n: (order.index(n), 8) for n in friction}         # success grows with the wheels' friction
     lines = BENCH.sensitivity(seed, rates)
