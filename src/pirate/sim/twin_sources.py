@@ -70,11 +70,16 @@ def drawn(seed, config=None, sources=None):
     for constant in constants(config, sources):
         if constant.range is None:
             continue
-        pairs = constant.range if isinstance(constant.value, list) else [constant.range]
-        values = [_draw(rng, low, high, value) for (low, high), value in zip(pairs, _as_list(constant.value))]
+        pairs = zip(range_pairs(constant), _as_list(constant.value))
+        values = [_draw(rng, low, high, value) for (low, high), value in pairs]
         section, key = constant.name.split('.')
         robot[section][key] = changes[constant.name] = values if isinstance(constant.value, list) else values[0]
     return robot, changes
+
+
+def range_pairs(constant):
+    """[(low, high)] of ``constant``'s plausible range, one per element of a list value."""
+    return constant.range if isinstance(constant.value, list) else [constant.range]
 
 
 def _draw(rng, low, high, nominal):
@@ -192,8 +197,7 @@ def _where(constant):
 def _plausible(constant):
     if constant.range is None:
         return ''
-    pairs = constant.range if isinstance(constant.value, list) else [constant.range]
-    return ', '.join('%s to %s' % (_show(low), _show(high)) for low, high in pairs)
+    return ', '.join('%s to %s' % (_show(low), _show(high)) for low, high in range_pairs(constant))
 
 
 def markdown(config=None, sources=None):
