@@ -85,6 +85,16 @@ def test_no_map_and_a_bad_kind_are_refused_and_nothing_is_written(tmp_path):
     assert store.read_findings(str(tmp_path), missing_ok=True)[0] == []
 
 
+def test_an_estimate_heard_before_the_map_is_no_map_to_mark_on(tmp_path):
+    """The mission's estimate can come before its map (make demo): the mark is refused with the reason."""
+    recorder = rec.Recorder(store.RunStore(str(tmp_path)), SETTINGS)
+    recorder.estimate(800.0)
+    with pytest.raises(fd.FindingError, match='no map'):
+        recorder.mark('leak', '', 0.0, 'service', where=None)
+    with pytest.raises(fd.FindingError, match='no map'):
+        recorder.where()
+
+
 def test_findings_survive_the_recorders_death(tmp_path):
     folder = str(tmp_path / 'run')
     recorder = _recorder(folder)

@@ -103,7 +103,7 @@ class Recorder(object):
     # --- the mark -------------------------------------------------------------
     def where(self):
         """(m along the map, m uncertain) now, from the anchor and the odometry since."""
-        if self.anchor is None:
+        if self.anchor is None or self.pipe_map is None:       # anchored by the executive before the map came
             raise fd.FindingError('no map: start a mission or give the inspection node a map (~map)')
         travelled_m = 0.0
         if self.anchor.odometry_mm is not None and self.odometry_mm is not None:
