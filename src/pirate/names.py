@@ -40,6 +40,8 @@ MISSION_ACTION = '/pirate/mission'            # pirate/MissionAction (Supervisor
 MISSION_COMMAND_SERVICE = '/pirate/mission/command'   # pirate/MissionCommand: pause, resume, ...
 MISSION_POSE_TOPIC = '/pirate/mission/pose'   # geometry_msgs/PoseStamped, estimate on the map
 MISSION_ALONG_TOPIC = '/pirate/mission/along_mm'      # std_msgs/Float64, estimate along the path
+#: pirate/MissionActionGoal, latched: the mission accepted last, its map and points (a resumed one's too)
+MISSION_CURRENT_TOPIC = '/pirate/mission/current'
 MISSION_MARKERS_TOPIC = '/pirate/mission/markers'     # visualization_msgs/MarkerArray: route, points, estimate
 MISSION_UNCERTAINTY_TOPIC = '/pirate/mission/uncertainty_mm'   # std_msgs/Float64, how far the estimate may be off
 INSPECTION_MARK_SERVICE = '/pirate/inspection/mark'    # pirate/InspectionMark: record a finding

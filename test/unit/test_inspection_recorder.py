@@ -95,6 +95,21 @@ def test_an_estimate_heard_before_the_map_is_no_map_to_mark_on(tmp_path):
         recorder.where()
 
 
+def test_an_estimate_heard_before_the_map_stands_when_the_map_comes(tmp_path):
+    """A recorder started late hears the estimate, then the latched mission
+    and its map: the robot is where the estimate says, not at the launch pit;
+    another map starts from its launch pit."""
+    pipe_map = network.load(network.world_path(inspection_run.MAP))
+    recorder = rec.Recorder(store.RunStore(str(tmp_path)), SETTINGS)
+    recorder.robot_state(JOINTS, [0.0, 0.0], math.pi / 2, 100.0)
+    recorder.estimate(800.0)
+    recorder.set_map(pipe_map, pipe_map.points['launch_pit'])
+    assert recorder.where()[0] == pytest.approx(0.8)
+    other = network.load(network.world_path('straight_90'))
+    recorder.set_map(other, other.start_m)
+    assert recorder.where()[0] == pytest.approx(other.start_m)
+
+
 def test_findings_survive_the_recorders_death(tmp_path):
     folder = str(tmp_path / 'run')
     recorder = _recorder(folder)
@@ -121,7 +136,8 @@ def test_the_missions_uncertainty_arriving_after_its_estimate_still_counts(tmp_p
 def test_the_missions_heard_make_the_runs_timeline(tmp_path):
     folder = str(tmp_path)
     recorder = _recorder(folder)
-    recorder.mission_goal(1.0, 'inspection_network_90', ['launch_pit', 'target'])
+    recorder.mission_goal(1.0, 'inspection_network_90', ['launch_pit', 'target'], 'goal-1')
+    recorder.mission_goal(1.0, 'inspection_network_90', ['launch_pit', 'target'], 'goal-1')   # latched: heard again
     for stamp, step, state in ((2.0, 1, 'running'), (3.0, 1, 'running'), (9.0, 2, 'waiting')):
         recorder.mission_feedback(stamp, step, 9, 'DRIVE', '', 600.0, state, 'resume' if state == 'waiting' else '')
     recorder.mission_result(20.0, 'succeeded', '9 PABs')
@@ -129,6 +145,12 @@ def test_the_missions_heard_make_the_runs_timeline(tmp_path):
         texts = [json.loads(line)['text'] for line in stream]
     assert texts == ['mission sent: inspection_network_90, launch_pit -> target', 'step 1/9: DRIVE, running',
                      'step 2/9: DRIVE, waiting for resume', 'mission succeeded: 9 PABs']
+    restarted = rec.Recorder(store.RunStore(folder), SETTINGS)      # a restarted node hears it latched
+    restarted.mission_goal(1.0, 'inspection_network_90', ['launch_pit', 'target'], 'goal-1')
+    restarted.mission_goal(30.0, 'inspection_network_90', ['target', 'launch_pit'], 'goal-2')
+    with open(os.path.join(folder, store.TIMELINE_FILE)) as stream:
+        texts = [json.loads(line)['text'] for line in stream]
+    assert texts[4:] == ['mission sent: inspection_network_90, target -> launch_pit']
 
 
 def test_a_mark_keeps_the_place_it_was_asked_at_and_no_frame_of_the_last_mark(tmp_path):

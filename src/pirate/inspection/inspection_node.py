@@ -9,9 +9,10 @@ already holds.
 
 Hears: ``/pirate/state`` (camera pan/tilt, roll, odometry), the mission's
 estimate (``/pirate/mission/along_mm``, ``/pirate/mission/uncertainty_mm``),
-the mission's goal (its map; the launch pit is the map's ``launch_pit``
-point, else the mission's first point), feedback and result (the run's
-timeline). At each mark it takes the next frame of each camera
+the mission accepted last (``/pirate/mission/current``, latched, so a
+recorder started late or restarted learns it: its map; the launch pit is the
+map's ``launch_pit`` point, else the mission's first point), the mission's
+feedback and result (the run's timeline). At each mark it takes the next frame of each camera
 (``/pirate/front_camera/image_raw``, ``/pirate/rear_camera/image_raw``,
 sensor_msgs/Image), subscribing only then: the twin renders a camera only
 while someone subscribes, and rendering costs its real-time factor.
@@ -72,7 +73,7 @@ class InspectionNode(object):
             lambda msg: self.recorder.uncertainty(msg.data)), queue_size=5)
         rospy.Subscriber(names.MISSION_ALONG_TOPIC, Float64, self._locked(
             lambda msg: self.recorder.estimate(msg.data)), queue_size=5)
-        rospy.Subscriber(names.MISSION_ACTION + '/goal', MissionActionGoal, self._on_mission, queue_size=2)
+        rospy.Subscriber(names.MISSION_CURRENT_TOPIC, MissionActionGoal, self._on_mission, queue_size=2)
         rospy.Subscriber(names.MISSION_ACTION + '/feedback', MissionActionFeedback, self._locked(
             lambda msg: self.recorder.mission_feedback(rospy.get_time(), *_progress(msg.feedback))), queue_size=10)
         rospy.Subscriber(names.MISSION_ACTION + '/result', MissionActionResult, self._locked(
@@ -112,7 +113,8 @@ class InspectionNode(object):
     def _on_mission(self, msg):
         self._use_map(msg.goal.map, list(msg.goal.points))
         with self._lock:
-            self.recorder.mission_goal(rospy.get_time(), msg.goal.map, list(msg.goal.points))
+            self.recorder.mission_goal(msg.header.stamp.to_sec(), msg.goal.map, list(msg.goal.points),
+                                       msg.goal_id.id)
 
     def _on_state(self, msg):
         if not msg.stale:

@@ -42,13 +42,18 @@ class Recorder(object):
         self._uncertainty_m = self._tolerance_m
         self.frames = {}
         self._mission_step = None
+        self._estimated = False         # the anchor is the mission's estimate, not the launch pit
 
     # --- what the node hears ------------------------------------------------
     def set_map(self, pipe_map, launch_m):
         """The map of the job and the launch pit on it (m along); the robot
-        is taken to be at the launch pit until an estimate says otherwise."""
+        is taken to be at the launch pit until an estimate says otherwise (an
+        estimate heard before the map, on the same map, stands)."""
+        same = self.pipe_map is None or self.pipe_map.source == pipe_map.source
         self.pipe_map, self.launch_m = pipe_map, launch_m
-        self.anchor = Anchor(launch_m, self.odometry_mm, self._tolerance_m)
+        if not (self._estimated and same):      # an estimate on this map stands
+            self.anchor = Anchor(launch_m, self.odometry_mm, self._tolerance_m)
+            self._estimated = False
 
     def robot_state(self, joint_names, positions, roll_rad, odometry_mm):
         """One RobotState: joints (rad), roll (rad, Fig 4.7), odometry (mm)."""
@@ -67,11 +72,14 @@ class Recorder(object):
     def estimate(self, along_mm):
         """The mission's estimate (mm along the map): re-anchors here."""
         self.anchor = Anchor(along_mm / 1000.0, self.odometry_mm, self._uncertainty_m)
+        self._estimated = True
 
-    def mission_goal(self, stamp_s, map_name, points):
-        """A mission was sent: into the timeline."""
+    def mission_goal(self, stamp_s, map_name, points, mission_id):
+        """A mission was accepted (``stamp_s``; ``mission_id`` its goal id):
+        into the timeline, once however often it is heard."""
         self._mission_step = None
-        self.run.log_event({'stamp_s': stamp_s, 'text': 'mission sent: %s, %s' % (map_name, ' -> '.join(points))})
+        self.run.log_mission({'stamp_s': stamp_s, 'text': 'mission sent: %s, %s' % (map_name, ' -> '.join(points))},
+                             mission_id)
 
     def mission_feedback(self, stamp_s, step, steps, pab, option, along_mm, state, waiting_for):
         """A mission's feedback: into the timeline when its step or state changes."""

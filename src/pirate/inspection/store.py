@@ -76,6 +76,16 @@ class RunStore(object):
         if about is not None and not os.path.exists(os.path.join(folder, RUN_FILE)):
             write_about(folder, about)
         self.findings, self.warnings = read_findings(folder, missing_ok=True)
+        self.missions = _timeline_missions(folder)
+
+    def log_mission(self, event, mission_id):
+        """Log a mission's ``event`` once per ``mission_id`` (its goal id) in
+        this run, across restarts of the node; False when it was already."""
+        if mission_id in self.missions:
+            return False
+        self.log_event(dict(event, mission_id=mission_id))
+        self.missions.add(mission_id)
+        return True
 
     def next_number(self):
         """The number the next finding gets (1, 2, ...)."""
@@ -96,6 +106,23 @@ class RunStore(object):
     def log_event(self, event):
         """Append one event of the timeline (a JSON-able dict), fsynced."""
         _append_line(os.path.join(self.folder, TIMELINE_FILE), event)
+
+
+def _timeline_missions(folder):
+    """The goal ids of the missions the timeline of ``folder`` holds."""
+    path = os.path.join(folder, TIMELINE_FILE)
+    if not os.path.exists(path):
+        return set()
+    missions = set()
+    with open(path, 'rb') as stream:
+        for raw in stream.read().decode('utf-8', 'replace').split('\n'):
+            try:
+                event = json.loads(raw)
+            except ValueError:          # blank, or cut short by a dead node
+                continue
+            if isinstance(event, dict) and event.get('mission_id'):
+                missions.add(event['mission_id'])
+    return missions
 
 
 def _append_line(path, record):

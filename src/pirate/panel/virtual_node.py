@@ -7,8 +7,9 @@ Pirate Server's action feedback and result (``/pirate/feedback``,
 ``/pirate/result``; when no server runs it simply shows no PAB news) and
 the panel's messages to the operator (refusals, results) from
 ``names.OPERATOR_TOPIC``, and the running mission (its map and route from
-its goal; step k of n, autonomy level, what it waits for, how it ended)
-from the mission executive's action goal, feedback and result; a running
+the executive's latched ``/pirate/mission/current``, a resumed mission's
+too; step k of n, autonomy level, what it waits for, how it ended from the
+mission action's feedback and result); a running
 PAB's time left from its goal (``/pirate/goal``) and how long a PAB of its
 kind typically takes (config/supervisory.yaml ``typical_s``); kept true
 by pirate.panel.status (the server's own state from
@@ -87,7 +88,7 @@ class VirtualPanelNode(object):
         rospy.Subscriber(names.PIRATE_ACTION + '/result', PirateActionResult,
                          self._on_result, queue_size=10)
         rospy.Subscriber(names.OPERATOR_TOPIC, String, self._on_operator, queue_size=10)
-        rospy.Subscriber(names.MISSION_ACTION + '/goal', MissionActionGoal, self._on_mission_goal, queue_size=10)
+        rospy.Subscriber(names.MISSION_CURRENT_TOPIC, MissionActionGoal, self._on_mission_goal, queue_size=10)
         rospy.Subscriber(names.MISSION_ACTION + '/feedback', MissionActionFeedback,
                          self._on_mission, queue_size=10)
         rospy.Subscriber(names.MISSION_ACTION + '/result', MissionActionResult,

@@ -18,7 +18,10 @@ overtaking a goal on its way). The estimated position
 is published as a pose on the map (``/pirate/mission/pose``, frame ``map``)
 and as millimetres along the path (``/pirate/mission/along_mm``), with how
 far it may be off (``/pirate/mission/uncertainty_mm``, the localiser's
-bound), 5 Hz.
+bound), 5 Hz. The mission accepted last, with its map and points (a resumed
+mission's too, whose goal names neither), is latched on
+``/pirate/mission/current`` (pirate/MissionActionGoal), so a node started
+late still learns it.
 
 The executive's log is written as it goes (pirate.supervisory.mission_log,
 ``~log``, default ``$ROS_HOME/pirate/mission_log.jsonl``): at start-up the
@@ -46,8 +49,8 @@ from std_msgs.msg import Float64
 from visualization_msgs.msg import Marker, MarkerArray
 
 from pirate import names
-from pirate.msg import (MissionAction, MissionFeedback, MissionGoal, MissionResult, PirateAction, PirateGoal,
-                        RobotState)
+from pirate.msg import (MissionAction, MissionActionGoal, MissionFeedback, MissionGoal, MissionResult, PirateAction,
+                        PirateGoal, RobotState)
 from pirate.sequencer import goals
 from pirate.sequencer.clamp_state import IDLE_CLAMPED
 from pirate.srv import MissionCommand, MissionCommandResponse, ServerStatus
@@ -130,6 +133,7 @@ class MissionExecutiveNode(object):
         self._along_pub = rospy.Publisher(names.MISSION_ALONG_TOPIC, Float64, queue_size=1)
         self._uncertainty_pub = rospy.Publisher(names.MISSION_UNCERTAINTY_TOPIC, Float64, queue_size=1)
         self._markers_pub = rospy.Publisher(names.MISSION_MARKERS_TOPIC, MarkerArray, queue_size=2, latch=True)
+        self._current_pub = rospy.Publisher(names.MISSION_CURRENT_TOPIC, MissionActionGoal, queue_size=2, latch=True)
         self._log_path = rospy.get_param('~log', os.path.join(rospkg.get_ros_home(), 'pirate', 'mission_log.jsonl'))
         rospy.loginfo('mission_executive: %s (log %s)', self._last_mission(), self._log_path)
         self._log = mission_log.MissionLog(self._log_path)
@@ -165,6 +169,7 @@ class MissionExecutiveNode(object):
         handle.set_accepted(accepted)
         rospy.loginfo('mission_executive: %s', accepted)
         self._markers_pub.publish(route_markers(pipe_map, run.goal['points']))
+        self._current_pub.publish(current_mission(handle.get_goal_id(), run.goal))
         threading.Thread(target=self._run, args=(handle, run), name='mission', daemon=True).start()
 
     def _planned(self, handle, goal):
@@ -306,6 +311,14 @@ class MissionExecutiveNode(object):
         self._pose_pub.publish(pose)
         self._uncertainty_pub.publish(Float64(data=running[1].localiser.uncertainty_m(odometry_mm) * 1000.0))
         self._along_pub.publish(Float64(data=along_m * 1000.0))
+
+
+def current_mission(goal_id, goal):
+    """The MissionActionGoal of :data:`names.MISSION_CURRENT_TOPIC`: the
+    accepted goal's id and its record (a resumed mission's map and points)."""
+    msg = MissionActionGoal(goal_id=goal_id, goal=MissionGoal(**goal))
+    msg.header.stamp = rospy.Time.now()
+    return msg
 
 
 def goal_record(goal):
