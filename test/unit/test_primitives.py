@@ -11,7 +11,9 @@ import pytest
 from pirate.robot import safety, tables, units
 from pirate.state.feed import Cancelled, RobotView, SensorFrozen, TimedOut
 from pirate.sequencer.guards import GuardBook, load_files
+from pirate.sequencer.pabs import turn_motions as motions
 from pirate.sequencer.primitives import FrozenJoints, MotionPrimitives, Refused
+from pirate.sequencer.server import PabContext
 
 from fakes import command_arrays
 
@@ -165,6 +167,18 @@ def test_a_clamp_that_timed_out_says_where_its_outer_bend_stood(rig, bend_iv, sa
     with pytest.raises(TimedOut) as late:
         prims.clamp('rear')
     assert said in str(late.value)
+
+
+def test_a_corner_clamp_that_timed_out_says_what_it_read(rig):
+    """Clamping the front at the corner: the abort names where Bend II, Bend
+    I's spring and the middle (Bend III) stood, what a re-sent turn decides from."""
+    prims, feed, _ = rig
+    feed.outcome = TimedOut('clamp front at the corner: not reached within 15.0 s')
+    feed.current = view({'bend_i': -120.0}, bend_ii=1.48, bend_iii=0.81)
+    ctx = PabContext(prims, feed, prims.guards, None, lambda *state: None)
+    with pytest.raises(TimedOut) as late:
+        motions.clamp_at_corner(ctx)
+    assert str(late.value).endswith("bend_ii stood at +1.48 rad, bend_i's spring at -120 mNm, bend_iii at +0.81 rad")
 
 
 def stamped(stamp, efforts=None, **angles):

@@ -215,15 +215,21 @@ class MotionPrimitives(object):
             self.setpoint.set('wheels', units.mm_s_to_wheel_counts(mm_s))
 
     # --- advanced ---------------------------------------------------------
-    def wait_for(self, name, guard, text, timeout=None):
+    def wait_for(self, name, guard, text, timeout=None, stood=None):
         """Run primitive ``name``: announce it, wait for ``guard``, announce the end.
 
-        ``timeout`` defaults to the configured primitive timeout (robot time).
+        ``timeout`` defaults to the configured primitive timeout (robot time);
+        ``stood(view)``, given, says what the guard read when it timed out.
         """
         self.executed.append(name)
         self.notify(name, text)
-        view = self.feed.wait_until(guard, timeout or self.guards.primitive_timeout,
-                                    '%s: %s' % (name, text))
+        try:
+            view = self.feed.wait_until(guard, timeout or self.guards.primitive_timeout,
+                                        '%s: %s' % (name, text))
+        except TimedOut as late:
+            if stood is None or self.feed.latest() is None:
+                raise
+            raise TimedOut('%s: %s' % (late, stood(self.feed.latest()))) from late
         self.notify('', '%s reached %s' % (name, text))
         return view
 

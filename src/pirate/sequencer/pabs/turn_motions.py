@@ -343,8 +343,18 @@ def clamp_at_corner(ctx, lead=None):
     ctx.prims.wait_for('clamp %s at the corner' % lead.part,
                        lambda v: (v.angles[pair.inner.joint] >= inner
                                   and clamp_state.presses_wall(guards, pair.outer, v.efforts)),
-                       '%s >= %.2f and %s on the wall' % (pair.inner.joint, inner, pair.outer.joint))
+                       '%s >= %.2f and %s on the wall' % (pair.inner.joint, inner, pair.outer.joint),
+                       stood=lambda view: corner_stood(view, pair, lead))
     ctx.prims.move_module(pair.inner.joint, 0)
+
+
+def corner_stood(view, pair, lead):
+    """What a corner clamp read: its inner bend, its outer's spring and the
+    middle (the trailing V's inner bend), which a re-sent turn decides from."""
+    spring = (view.efforts or {}).get(pair.outer.joint, float('nan'))
+    return "%s stood at %+.2f rad, %s's spring at %+.0f mNm, %s at %+.2f rad" % (
+        pair.inner.joint, view.angles[pair.inner.joint], pair.outer.joint, spring, lead.trail_inner,
+        view.angles[lead.trail_inner])
 
 
 def swing_middle(ctx, lead=None):
