@@ -33,7 +33,7 @@ BOOK = GuardBook(*load_files())
 ALL_FACTS = [jn.Facts(*values) for values in itertools.product((True, False), repeat=len(jn.Facts._fields))]
 
 def in_a_corner(f):
-    return f.lead_round or f.middle_round or f.middle_swung or f.trail_round
+    return f.lead_round or f.corner_opening or f.middle_round or f.middle_swung or f.trail_round
 
 
 def past_the_corner(f):
@@ -528,6 +528,10 @@ CANCELLED = {
                                      jn.CLAMPING_AT_CORNER),
     'swinging, just started': (dict(bend_i=-0.47, bend_ii=1.75, bend_iii=0.48, bend_iv=-0.80),
                                dict(bend_i=155, bend_ii=-169, bend_iii=41, bend_iv=255), 3.16, jn.CLAMPING_AT_CORNER),
+    # re-sent at once (--hold 0, MuJoCo 3.2.3): Bend II opened below the corner clamp's 1.55, Bend III under 0.85
+    'swinging, Bend II opening first': (dict(bend_i=-0.57, bend_ii=1.47, bend_iii=0.83, bend_iv=-0.83),
+                                        dict(bend_i=231, bend_ii=-82, bend_iii=87, bend_iv=260), 3.13,
+                                        jn.SWINGING_MIDDLE),
     'swinging, reads Idle Clamped': (dict(bend_i=-0.65, bend_ii=1.10, bend_iii=1.21, bend_iv=-0.79),
                                      dict(bend_i=204, bend_ii=-118, bend_iii=187, bend_iv=258), 3.13,
                                      jn.SWINGING_MIDDLE),

@@ -62,8 +62,9 @@ def state(template, lead):
 
 #: The facts, read after every action. Remembered facts hold only while the
 #: odometry lies within the record's span: a robot moved since is not resumed.
-Facts = collections.namedtuple('Facts', 'found lead trail straight turn toward lead_round middle_round middle_swung '
-                                        'trail_round trail_through driving_in driven_in', defaults=(False,) * 8)
+Facts = collections.namedtuple('Facts', 'found lead trail straight turn toward lead_round corner_opening '
+                                        'middle_round middle_swung trail_round trail_through driving_in driven_in',
+                               defaults=(False,) * 9)
 
 #: The remembered facts a turn's record makes true (:class:`pirate.sequencer.pabs.junction.PastCorner`).
 REMEMBERED = ('trail_through', 'driving_in', 'driven_in')
@@ -86,6 +87,9 @@ def _facts(lead):
         toward=fact('toward', means="the rear's roll within the nominal region around the clamp of the goal's side"),
         lead_round=fact('lead_round', '%s_round' % lead, '%s round the corner: the %s has turned into the new pipe'
                         % (INNER_BEND[lead], lead)),
+        corner_opening=fact('corner_opening', means="%s round the corner below the turn row's corner_inner_rad with "
+                                                    '%s pressing the wall: clamped at the corner, the middle swinging '
+                                                    'round opened it' % (INNER_BEND[lead], OUTER_BEND[lead])),
         middle_round=fact('middle_round', means="%s at least the turn row's resume_middle_rad: the middle swinging "
                                                 'round (a straight pipe keeps it below)' % middle),
         middle_swung=fact('middle_swung', means="%s at least the turn row's swing_rad" % middle),
@@ -102,8 +106,8 @@ def machine(lead):
     """The junction PAB's :class:`StateMachine` with ``lead`` ('front' / 'rear') leading."""
     f = _facts(lead)
     s = {template: state(template, lead) for template in STATES}
-    in_a_corner = named('in a corner', any_of(f['lead_round'], f['middle_round'], f['middle_swung'],
-                                              f['trail_round']),
+    in_a_corner = named('in a corner', any_of(f['lead_round'], f['corner_opening'], f['middle_round'],
+                                              f['middle_swung'], f['trail_round']),
                         'some bend says the robot is (partly) round a corner')
     past_the_corner = named('past the corner', any_of(f['trail_through'], f['driving_in'], f['driven_in']),
                             "the server's record says this turn's %s had come round the corner" % LEADS[lead][1])
@@ -120,9 +124,10 @@ def machine(lead):
     # A turn re-sent after a cancel: the step that continues it from what the robot senses.
     toward = f['toward']
     resume_steering = all_of(turn, toward, trail, not_(lead_), at_the_start)
-    resume_at_corner = all_of(turn, toward, trail, f['lead_round'], not_(f['middle_round']),
+    swinging = any_of(f['middle_round'], f['corner_opening'])
+    resume_at_corner = all_of(turn, toward, trail, f['lead_round'], not_(swinging),
                               not_(f['middle_swung']), not_(past_the_corner))
-    resume_swinging = all_of(turn, toward, trail, f['middle_round'], not_(f['middle_swung']), not_(past_the_corner))
+    resume_swinging = all_of(turn, toward, trail, swinging, not_(f['middle_swung']), not_(past_the_corner))
     resume_bringing = all_of(turn, toward, lead_,
                              any_of(all_of(trail, f['middle_swung']),
                                     all_of(not_(trail), any_of(f['middle_round'], f['middle_swung'],
