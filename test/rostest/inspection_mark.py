@@ -2,7 +2,12 @@
 """rostest: /pirate/inspection/mark records a finding where the robot is,
 with both cameras' frames (latched here: the recorder asks each camera at
 the mark), in the run folder, and the findings topic (latched) shows it; a
-bad kind records nothing."""
+bad kind records nothing.
+
+With ``~mission_map`` the recorder starts without a map: a mark is refused
+("no map") until the mission executive's latched current mission
+(``/pirate/mission/current``) names that map, whenever the recorder
+subscribed; the estimate heard before it stands."""
 import json
 import math
 import os
@@ -16,7 +21,7 @@ from sensor_msgs.msg import Image
 from std_msgs.msg import Float64, String
 
 from pirate import names
-from pirate.msg import RobotState
+from pirate.msg import MissionActionGoal, RobotState
 from pirate.srv import InspectionMark
 
 DEADLINE_S = 60.0
@@ -41,6 +46,7 @@ class InspectionMarkTest(unittest.TestCase):
         cls.rear = rospy.Publisher(names.CAMERA_NAMESPACES['rear'] + '/image_raw', Image, **latched)
         cls.uncertainty = rospy.Publisher(names.MISSION_UNCERTAINTY_TOPIC, Float64, **latched)
         cls.along = rospy.Publisher(names.MISSION_ALONG_TOPIC, Float64, **latched)
+        cls.mission = rospy.Publisher(names.MISSION_CURRENT_TOPIC, MissionActionGoal, **latched)
         rospy.wait_for_service(names.INSPECTION_MARK_SERVICE, timeout=DEADLINE_S)
         cls.mark = rospy.ServiceProxy(names.INSPECTION_MARK_SERVICE, InspectionMark)
 
@@ -70,13 +76,14 @@ class InspectionMarkTest(unittest.TestCase):
         self.front.publish(_image('rgb8', (200, 40, 40)))
         self.rear.publish(_image('bgr8', (40, 40, 200)))
         expected = "1990 mm from the launch pit (+/- 170 mm), 12 o'clock"
+        self._mission_names_the_map(rospy.get_param('~mission_map', ''))
         answer = None
-        for _ in range(50):       # until the node has heard the state and the estimate (in flight)
+        for _ in range(50):       # until the node has heard the state, the estimate and the map (in flight)
             self.uncertainty.publish(Float64(data=170.0))
             self.along.publish(Float64(data=2390.0))
             rospy.sleep(0.1)
             answer = self.mark(kind='leak', note='hiss')
-            if expected in answer.message or not answer.ok:
+            if expected in answer.message or not (answer.ok or 'no map' in answer.message):
                 break
         self.assertTrue(answer.ok, answer.message)
         self.assertIn(expected, answer.message)
@@ -90,6 +97,19 @@ class InspectionMarkTest(unittest.TestCase):
         refused = self.mark(kind='hole', note='')
         self.assertFalse(refused.ok)
         self.assertIn('not one of', refused.message)
+
+    def _mission_names_the_map(self, map_name):
+        """Without a map a mark is refused; then the latched current mission names ``map_name``."""
+        if not map_name:
+            return
+        refused = self.mark(kind='leak', note='before the mission')
+        self.assertFalse(refused.ok)
+        self.assertIn('no map', refused.message)
+        current = MissionActionGoal()
+        current.header.stamp = rospy.Time.now()
+        current.goal_id.id = 'inspection-mark-rostest'
+        current.goal.map, current.goal.points = map_name, ['launch_pit', 'target']
+        self.mission.publish(current)
 
 
 if __name__ == '__main__':
