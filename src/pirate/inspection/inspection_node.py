@@ -111,10 +111,10 @@ class InspectionNode(object):
         rospy.loginfo('inspection: map %s, launch pit at %.0f mm', name, launch_m * 1000)
 
     def _on_mission(self, msg):
-        self._use_map(msg.goal.map, list(msg.goal.points))
-        with self._lock:
+        with self._lock:        # into the timeline before the map loads, ahead of the mission's first feedback
             self.recorder.mission_goal(msg.header.stamp.to_sec(), msg.goal.map, list(msg.goal.points),
                                        msg.goal_id.id)
+        self._use_map(msg.goal.map, list(msg.goal.points))
 
     def _on_state(self, msg):
         if not msg.stale:
