@@ -147,3 +147,16 @@ def test_a_run_with_the_twins_ground_truth_draws_the_true_position_beside_the_es
     assert drawn.series[1][2] == pytest.approx([410.0, 420.0, 430.0, 440.0, 450.0], abs=0.5)
     assert 'truth' in drawn.title
     assert not run.truth        # the recorded bag holds no ground truth: the estimate alone
+
+
+def test_a_resumed_mission_is_drawn_on_the_map_the_executive_latched():
+    """A resume goal names no map; the executive's latched current mission does."""
+    recorded = {topic: [] for topic in mission_plot.TOPICS}
+    recorded[mission_plot.ALONG_TOPIC] = [(10.0 + 0.2 * k, Float64(data=400.0 + 10 * k)) for k in range(5)]
+    recorded[mission_plot.GOAL_TOPIC] = [(10.0, MissionActionGoal(goal=MissionGoal(resume=True)))]
+    recorded[mission_plot.CURRENT_TOPIC] = [
+        (10.1, MissionActionGoal(goal=MissionGoal(map='inspection_network_90', points=['launch_pit', 'target'])))]
+    drawn = mission_plot.mission_run(recorded)
+    assert [name for name, _ in drawn.points] == ['launch_pit', 'target']
+    recorded[mission_plot.CURRENT_TOPIC] = []
+    assert mission_plot.mission_run(recorded).points == []

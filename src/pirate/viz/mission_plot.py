@@ -28,11 +28,12 @@ from pirate.world import network
 
 ALONG_TOPIC = names.MISSION_ALONG_TOPIC
 GOAL_TOPIC = names.MISSION_ACTION + '/goal'
+CURRENT_TOPIC = names.MISSION_CURRENT_TOPIC
 FEEDBACK_TOPIC = names.MISSION_ACTION + '/feedback'
 RESULT_TOPIC = names.MISSION_ACTION + '/result'
 PAB_GOAL_TOPIC = names.PIRATE_ACTION + '/goal'
 TRUTH_TOPIC = names.GROUND_TRUTH_TOPIC
-TOPICS = (ALONG_TOPIC, GOAL_TOPIC, FEEDBACK_TOPIC, RESULT_TOPIC, PAB_GOAL_TOPIC, TRUTH_TOPIC)
+TOPICS = (ALONG_TOPIC, CURRENT_TOPIC, GOAL_TOPIC, FEEDBACK_TOPIC, RESULT_TOPIC, PAB_GOAL_TOPIC, TRUTH_TOPIC)
 #: The robot's middle: between these two ground-truth poses (their index in TRUTH_BODIES).
 MIDDLE_POSES = tuple(TRUTH_BODIES.index(body) for body in (ROOT, ROTATIONAL_FRONT))
 #: Simulated s between two true positions drawn (the estimate comes at 5 Hz).
@@ -61,7 +62,7 @@ def mission_run(recorded, start_s=None):
     markers = [(t - t0, pab_label(msg.goal)) for t, msg in pab_goals]
     events = [(t - t0, text) for t, text in pauses(feedback)]
     events += [(t - t0, 'mission %s: %s' % (msg.result.status, msg.result.message)) for t, msg in results]
-    route = _route(recorded[GOAL_TOPIC], results)
+    route = _route(recorded.get(CURRENT_TOPIC, []) + recorded[GOAL_TOPIC], results)
     pipe_map = route_map(route)
     truth = true_along(pipe_map, [(t - t0, msg) for t, msg in recorded.get(TRUTH_TOPIC, ())]) if pipe_map else ()
     return MissionRun([t - t0 for t, _ in along], [msg.data for _, msg in along], markers, sorted(events),
@@ -90,11 +91,13 @@ def pauses(feedback):
 
 
 def _route(mission_goals, results):
-    """(map, [points]) from the mission goal, or from the plan in its result
-    (a recorder can miss a goal sent right after its client connected)."""
-    if mission_goals:
-        goal = mission_goals[-1][1].goal
-        return goal.map, list(goal.points)
+    """(map, [points]) from the mission accepted last (the executive's latched
+    current mission first, then the action's goals: a resume goal names no
+    map), or from the plan in its result (a bag of the goal topic alone can
+    miss a goal sent right after its client connected)."""
+    named = [msg.goal for _, msg in mission_goals if msg.goal.map]
+    if named:
+        return named[-1].map, list(named[-1].points)
     plans = [msg.result.plan for _, msg in results if msg.result.plan]
     return planner.route_of(plans[-1]) if plans else None
 
