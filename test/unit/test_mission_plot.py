@@ -158,5 +158,9 @@ def test_a_resumed_mission_is_drawn_on_the_map_the_executive_latched():
         (10.1, MissionActionGoal(goal=MissionGoal(map='inspection_network_90', points=['launch_pit', 'target'])))]
     drawn = mission_plot.mission_run(recorded)
     assert [name for name, _ in drawn.points] == ['launch_pit', 'target']
+    earlier = MissionActionGoal(goal=MissionGoal(map='straight_90', points=['pit', 'target']))
+    recorded[mission_plot.GOAL_TOPIC].insert(0, (5.0, earlier))       # a mission before it: not the one drawn
+    assert [name for name, _ in mission_plot.mission_run(recorded).points] == ['launch_pit', 'target']
+    recorded[mission_plot.GOAL_TOPIC].pop(0)
     recorded[mission_plot.CURRENT_TOPIC] = []
     assert mission_plot.mission_run(recorded).points == []

@@ -62,7 +62,7 @@ def mission_run(recorded, start_s=None):
     markers = [(t - t0, pab_label(msg.goal)) for t, msg in pab_goals]
     events = [(t - t0, text) for t, text in pauses(feedback)]
     events += [(t - t0, 'mission %s: %s' % (msg.result.status, msg.result.message)) for t, msg in results]
-    route = _route(recorded.get(CURRENT_TOPIC, []) + recorded[GOAL_TOPIC], results)
+    route = _route(sorted(recorded[CURRENT_TOPIC] + recorded[GOAL_TOPIC], key=lambda heard: heard[0]), results)
     pipe_map = route_map(route)
     truth = true_along(pipe_map, [(t - t0, msg) for t, msg in recorded.get(TRUTH_TOPIC, ())]) if pipe_map else ()
     return MissionRun([t - t0 for t, _ in along], [msg.data for _, msg in along], markers, sorted(events),
@@ -91,10 +91,11 @@ def pauses(feedback):
 
 
 def _route(mission_goals, results):
-    """(map, [points]) from the mission accepted last (the executive's latched
-    current mission first, then the action's goals: a resume goal names no
-    map), or from the plan in its result (a bag of the goal topic alone can
-    miss a goal sent right after its client connected)."""
+    """(map, [points]) from the last of ``mission_goals`` ([(t s, goal)]: the
+    executive's latched current missions and the action's goals, in time)
+    that names a map (a resume goal names none; the current mission of a
+    resumed one does), or from the plan in its result (a bag of the goal
+    topic alone can miss a goal sent right after its client connected)."""
     named = [msg.goal for _, msg in mission_goals if msg.goal.map]
     if named:
         return named[-1].map, list(named[-1].points)
