@@ -80,12 +80,10 @@ class RunStore(object):
 
     def log_mission(self, event, mission_id):
         """Log a mission's ``event`` once per ``mission_id`` (its goal id) in
-        this run, across restarts of the node; False when it was already."""
-        if mission_id in self.missions:
-            return False
-        self.log_event(dict(event, mission_id=mission_id))
-        self.missions.add(mission_id)
-        return True
+        this run, across restarts of the node."""
+        if mission_id not in self.missions:
+            self.log_event(dict(event, mission_id=mission_id))
+            self.missions.add(mission_id)
 
     def next_number(self):
         """The number the next finding gets (1, 2, ...)."""

@@ -227,9 +227,10 @@ class MotionPrimitives(object):
             view = self.feed.wait_until(guard, timeout or self.guards.primitive_timeout,
                                         '%s: %s' % (name, text))
         except TimedOut as late:
-            if stood is None or self.feed.latest() is None:
+            last = self.feed.latest()
+            if stood is None or last is None:
                 raise
-            raise TimedOut('%s: %s' % (late, stood(self.feed.latest()))) from late
+            raise TimedOut('%s: %s' % (late, stood(last))) from late
         self.notify('', '%s reached %s' % (name, text))
         return view
 

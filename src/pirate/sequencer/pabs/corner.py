@@ -22,24 +22,25 @@ def facts(guards, view, lead=None):
         return {}
     lead = lead or motions.FRONT_LEADS
     row, angles = motions.turn_row(guards, lead), view.angles
-    return dict(lead_round=motions.steered(row, view, lead),
-                corner_opening=corner_opening(guards, view, row, lead),
+    lead_round = motions.steered(row, view, lead)
+    return dict(lead_round=lead_round,
+                corner_opening=lead_round and opened_at_the_corner(guards, view, row, lead),
                 middle_round=angles[lead.trail_inner] >= float(row['resume_middle_rad']),
                 middle_swung=angles[lead.trail_inner] >= float(row['swing_rad']),
                 trail_round=angles[lead.trail_outer] >= float(row['resume_rear_rad']))
 
 
-def corner_opening(guards, view, row, lead):
-    """The leading V clamped at the corner with the middle swinging: round the
-    corner, its outer bend pressing the wall, its inner opened below the
-    corner clamp's ``corner_inner_rad``. The middle's swing opens the inner
+def opened_at_the_corner(guards, view, row, lead):
+    """The leading V, round the corner, clamped there with the middle
+    swinging (the fact corner_opening): its outer bend pressing the wall,
+    its inner opened below the corner clamp's ``corner_inner_rad``. The middle's swing opens the inner
     that way before the middle bend says so (twin, 90 mm mitre cancelled
     while swinging: Bend II 1.47-1.53 rad with Bend III 0.77-0.83, below
     ``resume_middle_rad``); a corner clamp closes the inner past its guard
     before its outer presses (Bend II 1.73-1.75 with Bend I's spring at
     -5..+127 mNm). measurements.md#turn-resume."""
-    pair = guards.pair(motions.full_row_of(guards, view, lead.part), lead.part)
-    return (motions.steered(row, view, lead) and view.angles[lead.inner] < float(row['corner_inner_rad'])
+    pair = motions.full_pair(guards, view, lead.part)
+    return (view.angles[lead.inner] < float(row['corner_inner_rad'])
             and clamp_state.presses_wall(guards, pair.outer, view.efforts))
 
 

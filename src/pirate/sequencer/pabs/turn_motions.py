@@ -183,7 +183,7 @@ def open_to_cross(ctx, part, lead=None):
     if not press or not lying_on_a_side(ctx.guards, view, part):
         ctx.prims.unclamp(part, partial=True)
         return
-    pair = ctx.guards.pair(full_row_of(ctx.guards, view, part), part)
+    pair = full_pair(ctx.guards, view, part)
     torque(ctx.prims, **{pair.outer.joint: int(math.copysign(press, pair.outer.setpoint)), pair.inner.joint: 0})
 
 
@@ -202,6 +202,11 @@ def full_row_of(guards, view, part):
     return clamp_state.full_row(guards, clamp_state.part_roll(part, view.angles, view.orientation))
 
 
+def full_pair(guards, view, part):
+    """The outer and inner bends of ``part``'s full clamp (:func:`full_row_of`)."""
+    return guards.pair(full_row_of(guards, view, part), part)
+
+
 def clamp_full(ctx, part):
     """Clamp ``part`` with the full guards of its roll (upright or on a side)."""
     ctx.prims.clamp(part, full_row_of(ctx.guards, ctx.feed.latest(), part))
@@ -217,7 +222,7 @@ def press_what_is_clamped(ctx):
     sets what Clamp Sideways left."""
     guards, view = ctx.guards, ctx.feed.latest()
     for part in clamp_state.PARTS:
-        pair = guards.pair(full_row_of(guards, view, part), part)
+        pair = full_pair(guards, view, part)
         if clamp_state.presses_wall(guards, pair.outer, view.efforts):
             torque(ctx.prims, **{pair.outer.joint: pair.outer.setpoint, pair.inner.joint: 0})
 
@@ -337,7 +342,7 @@ def clamp_at_corner(ctx, lead=None):
     clamp, so the middle can swing."""
     lead = lead or FRONT_LEADS
     row, guards = turn_row(ctx.guards, lead), ctx.guards
-    pair = guards.pair(full_row_of(guards, ctx.feed.latest(), lead.part), lead.part)
+    pair = full_pair(guards, ctx.feed.latest(), lead.part)
     torque(ctx.prims, **{pair.outer.joint: pair.outer.setpoint, pair.inner.joint: pair.inner.setpoint})
     inner = float(row['corner_inner_rad'])
     ctx.prims.wait_for('clamp %s at the corner' % lead.part,
