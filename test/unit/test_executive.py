@@ -14,7 +14,7 @@ from pirate import paths
 from pirate.sequencer.junctions import is_turn
 from pirate.supervisory import executive as ex
 from pirate.supervisory import planner
-from pirate.supervisory.localiser import Localiser, MapMismatch, sensed_at_m
+from pirate.supervisory.localiser import Fix, Localiser, MapMismatch, sensed_at_m
 from pirate.world import network
 
 with open(os.path.join(paths.CONFIG_DIR, 'supervisory.yaml')) as _f:
@@ -438,6 +438,43 @@ def test_the_search_ends_where_a_junction_sensed_would_no_longer_be_the_maps(sta
                 localiser.junction_found(tee, odometry_mm, sign)
 
 
+def _back_from(start_m, fixes=()):
+    """A localiser at ``start_m``, its odometry 0 there, with ``fixes``."""
+    localiser = Localiser(start_m, SETTINGS)
+    localiser.update(0.0)
+    localiser.fixes.extend(fixes)
+    return localiser
+
+
+def test_a_turn_taken_back_through_a_junction_found_on_the_way_in_allows_its_steerings_slip():
+    """Back through a bend found on the way in, a rear-first turn's search
+    reaches further: ``steer_slip`` of its odometry may be slip (the rear
+    pushing the far wall), and a bend sensed at its far end is the map's,
+    1 mm beyond it not. The same bend not found before is searched for and
+    checked strictly, and a bend sensed short of the map gets no slip."""
+    (mitre,) = planner.junctions(MAP)
+    found = [Fix(mitre.name, mitre.exit_m, mitre.exit_m)]
+    expected_m = sensed_at_m(mitre, -1, SETTINGS['robot'])
+    reach_mm = {}
+    for fixes in ((), found):
+        search = _back_from(3.0, fixes).search(mitre, -1, 5000.0)
+        reach_mm[bool(fixes)] = (3.0 - search.to_m) * 1000.0
+        for beyond_mm, taken in ((-0.01, True), (1.0, False)):
+            localiser = _back_from(3.0, fixes)
+            localiser.search(mitre, -1, 5000.0)
+            if taken:
+                assert localiser.junction_found(mitre, -reach_mm[bool(fixes)] - beyond_mm, -1) == expected_m
+            else:
+                with pytest.raises(MapMismatch):
+                    localiser.junction_found(mitre, -reach_mm[bool(fixes)] - beyond_mm, -1)
+    # 910 mm from the bend's exit: 150 + 0.05 d + 0.4 d = d - 910 (found), 150 + 0.05 d = d - 910 (not)
+    assert reach_mm[False] == pytest.approx(1060.0 / 0.95) and reach_mm[True] == pytest.approx(1060.0 / 0.55)
+    short = _back_from(3.0, found)
+    short.search(mitre, -1, 5000.0)
+    with pytest.raises(MapMismatch):      # sensed 190 mm short of the map, 720 mm on: 150 + 0.05 * 720 < 190
+        short.junction_found(mitre, (expected_m - 3.0) * 1000.0 + 190.0, -1)
+
+
 def test_the_search_is_no_longer_than_the_plans():
     (mitre,) = planner.junctions(MAP)
     localiser = Localiser(0.3, SETTINGS)
@@ -463,9 +500,12 @@ def test_a_turn_anchors_the_middle_at_the_bend_straight_on_through_a_tee_before_
         {'type': 'straight', 'length_mm': 1000}, {'type': 'tee', 'enter': 'run', 'side': 'up'},
         {'type': 'straight', 'length_mm': 1000}]})
     (mitre,), (tee,) = planner.junctions(MAP), planner.junctions(tee_map)
-    robot = dict(SETTINGS['robot'], sense_front_mm=100.0, sense_turn_mm=20.0)
-    assert sensed_at_m(mitre, 1, robot) == pytest.approx(2.0 - 0.020)
-    assert sensed_at_m(tee, 1, robot) == pytest.approx(1.0 - 0.100)
+    robot = dict(SETTINGS['robot'], sense_front_mm=100.0, sense_rear_mm=70.0, sense_turn_mm=20.0)
+    assert sensed_at_m(mitre, 1, robot) == pytest.approx(mitre.entry_m - 0.020)
+    assert sensed_at_m(tee, 1, robot) == pytest.approx(tee.entry_m - 0.100)
+    # rear first: a turn round the corner at the exit as front first at the entry; straight on, the rear V's apex
+    assert sensed_at_m(mitre, -1, robot) == pytest.approx(mitre.exit_m + 0.020)
+    assert sensed_at_m(tee, -1, robot) == pytest.approx(tee.exit_m + 0.070)
 
 
 def test_progress_counts_steps_and_time_left_goes_down():

@@ -5,6 +5,7 @@ The executive "dies" with a step running: the log is read as the death
 leaves it (everything written so far, flushed), then the manager cancels
 the dead owner's goal (the robot stops, held) and a new executive takes the
 mission up from that log with the same robot."""
+import json
 import threading
 
 import pytest
@@ -121,6 +122,21 @@ def test_the_estimate_goes_on_from_the_last_anchor_its_uncertainty_grown_by_the_
     assert again.along_m == pytest.approx(1.1)
     assert again.uncertainty_m(900.0) - localiser.uncertainty_m(600.0) == pytest.approx(
         SETTINGS['odometry_drift'] * 0.3)
+
+
+def test_a_restored_estimate_knows_the_junctions_found_so_the_way_back_allows_their_slip():
+    """A junction found before the executive died is still found after:
+    a turn back through it may count its steering's slip (pirate.supervisory.localiser)."""
+    (mitre,) = planner.junctions(MAP)
+    localiser = Localiser(1.0, SETTINGS)
+    localiser.update(0.0)
+    localiser.junction_found(mitre, (sensed_at_m(mitre, 1, SETTINGS['robot']) - 1.0) * 1000.0, 1)
+    localiser.update(1500.0)
+    again = restored(json.loads(json.dumps(localiser.state())), SETTINGS)
+    assert [f.junction for f in again.fixes] == [mitre.name]
+    assert again.search(mitre, -1, 5000.0) == localiser.search(mitre, -1, 5000.0)
+    assert restored(dict(localiser.state(), found=[]), SETTINGS).search(mitre, -1, 5000.0).to_m > \
+        localiser.search(mitre, -1, 5000.0).to_m                    # not found before: a shorter search back
 
 
 def _log(*records):

@@ -43,6 +43,8 @@ class Localiser(object):
         self._robot = settings['robot']
         self._tolerance_m = settings['locate_tolerance_mm'] / 1000.0
         self._drift = settings['odometry_drift']
+        self._slip = settings['steer_slip']
+        self._slip_from = None      # (junction name, estimate m) where a search allowing slip began
 
     def update(self, odometry_mm):
         """A new odometry reading: the estimate follows it from the anchor."""
@@ -54,10 +56,11 @@ class Localiser(object):
     def state(self):
         """What restores this localiser (:func:`restored`), as plain data in
         mm: the estimate, its uncertainty, the last anchor (where on the map
-        and the odometry there) and the odometry of the estimate (None
-        before the first reading)."""
+        and the odometry there), the odometry of the estimate (None before
+        the first reading) and the junctions found (by name, in order)."""
         return {'along_mm': round(self.along_m * 1000.0, 1), 'anchor_mm': round(self.anchor_m * 1000.0, 1),
                 'anchor_odometry_mm': self.anchor_odometry, 'odometry_mm': self.odometry_mm,
+                'found': [fix.junction for fix in self.fixes],
                 'uncertainty_mm': round(self._uncertainty_at(self.along_m) * 1000.0, 1)}
 
     def estimate(self, odometry_mm):
@@ -84,21 +87,30 @@ class Localiser(object):
         at most ``limit_mm`` of odometry; nothing (``to_m`` = ``from_m``)
         when the estimate is already beyond it."""
         expected = sensed_at_m(junction, sign, self._robot)
-        reach_m = min(max(self._reach_m(expected, sign), 0.0), limit_mm / 1000.0)
+        slip = self._slip_of(junction)
+        self._slip_from = (junction.name, self.along_m) if slip else None
+        reach_m = min(max(self._reach_m(expected, sign, slip), 0.0), limit_mm / 1000.0)
         to_m = self.along_m + sign * reach_m
-        return Search(junction, sign, expected, self.along_m, to_m, self._uncertainty_at(to_m))
+        return Search(junction, sign, expected, self.along_m, to_m, self._uncertainty_at(to_m) + slip * reach_m)
 
-    def _reach_m(self, expected_m, sign):
+    def _slip_of(self, junction):
+        """The share of odometry a search for ``junction`` may count in slip:
+        ``steer_slip`` for a turn at a junction already found, else 0."""
+        found = any(fix.junction == junction.name for fix in self.fixes)
+        return self._slip if found and is_turn(junction.direction) else 0.0
+
+    def _reach_m(self, expected_m, sign, slip=0.0):
         """How far (m) the estimate may go ``sign``-wards before a junction
-        sensed there lies farther than :meth:`uncertainty_m` beyond
-        ``expected_m``: the root of d - ahead = tolerance + drift |beyond + d|
-        (``ahead``: expected beyond the estimate, ``beyond``: the estimate
-        beyond the anchor, both the way it drives), one per side of the anchor."""
+        sensed there lies farther than :meth:`uncertainty_m` (plus ``slip``
+        of the way searched) beyond ``expected_m``: the root of d - ahead =
+        tolerance + drift |beyond + d| + slip d (``ahead``: expected beyond
+        the estimate, ``beyond``: the estimate beyond the anchor, both the
+        way it drives), one per side of the anchor."""
         ahead, beyond = sign * (expected_m - self.along_m), sign * (self.along_m - self.anchor_m)
-        past_anchor = (self._tolerance_m + ahead + self._drift * beyond) / (1.0 - self._drift)
+        past_anchor = (self._tolerance_m + ahead + self._drift * beyond) / (1.0 - self._drift - slip)
         if beyond + past_anchor >= 0.0:
             return past_anchor
-        return (self._tolerance_m + ahead - self._drift * beyond) / (1.0 + self._drift)
+        return (self._tolerance_m + ahead - self._drift * beyond) / (1.0 + self._drift - slip)
 
     def junction_found(self, junction, odometry_mm, sign):
         """A junction PAB detected ``junction`` (its leading V lost the wall)
@@ -108,6 +120,9 @@ class Localiser(object):
         allowed = self.uncertainty_m(odometry_mm)
         estimated = self.update(odometry_mm)
         mapped = sensed_at_m(junction, sign, self._robot)
+        if self._slip_from is not None and self._slip_from[0] == junction.name and sign * (estimated - mapped) > 0:
+            allowed += self._slip * abs(estimated - self._slip_from[1])     # ahead: the steering's slip
+        self._slip_from = None
         if abs(estimated - mapped) > allowed:
             raise MapMismatch('%s found with the robot at %.0f mm, the map has it at %.0f mm '
                               '(more than %.0f mm apart)' % (junction.name, estimated * 1000, mapped * 1000,
@@ -139,9 +154,11 @@ class Localiser(object):
 def restored(state, settings):
     """A :class:`Localiser` from its :meth:`Localiser.state`: anchored where
     it was, so a later odometry reading moves the estimate on from there and
-    the uncertainty grows with the distance since the anchor. KeyError,
+    the uncertainty grows with the distance since the anchor, and the
+    junctions it had found found again (where, it does not keep). KeyError,
     TypeError or ValueError when ``state`` is not one."""
     localiser = Localiser(float(state['anchor_mm']) / 1000.0, settings)
+    localiser.fixes = [Fix(str(name), None, None) for name in state.get('found', ())]
     odometry_mm, anchor_odometry = state['odometry_mm'], state['anchor_odometry_mm']
     if anchor_odometry is not None:
         localiser.anchor_odometry = float(anchor_odometry)
@@ -158,10 +175,13 @@ def sensed_at_m(junction, sign, robot):
     """Where the robot's middle is (m along) when a junction PAB senses
     ``junction`` driving forward (``sign`` 1: the front V's apex reaches its
     entry, ``robot['sense_front_mm']`` ahead of the middle) or back (-1: the
-    rear V's apex reaches its exit). A turn senses its junction differently
-    (Bend II round the corner, the middle ``robot['sense_turn_mm']`` before
-    the entry). ``robot``: config/supervisory.yaml's row."""
-    if sign > 0:
-        ahead_mm = robot['sense_turn_mm'] if is_turn(junction.direction) else robot['sense_front_mm']
-        return junction.entry_m - ahead_mm / 1000.0
-    return junction.exit_m + robot['sense_rear_mm'] / 1000.0
+    rear V's apex reaches its exit, ``robot['sense_rear_mm']`` behind it).
+    A turn senses its junction differently, either way: its leading V round
+    the corner, the middle ``robot['sense_turn_mm']`` before the edge it
+    meets (the entry forward, the exit back). ``robot``: config/supervisory.yaml's row."""
+    edge_m = junction.entry_m if sign > 0 else junction.exit_m
+    if is_turn(junction.direction):
+        ahead_mm = robot['sense_turn_mm']
+    else:
+        ahead_mm = robot['sense_front_mm'] if sign > 0 else robot['sense_rear_mm']
+    return edge_m - sign * ahead_mm / 1000.0
