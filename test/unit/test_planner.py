@@ -116,6 +116,19 @@ def test_the_way_back_takes_the_bend_rear_first_still_clamped_sideways():
     assert back[2].end_m == pytest.approx(0.3)
 
 
+@pytest.mark.parametrize('route, leaves_mm', [
+    (('pit', 'near'), 2090 + TURN_END),                       # front first: past the bend's exit
+    (('pit', 'target', 'near_back'), 2000 - TURN_END_REAR_FIRST)])   # rear first: before its entry
+def test_a_point_the_turn_carries_the_robot_past_is_refused_naming_where_the_turn_leaves_it(route, leaves_mm):
+    net = world(BEND_LEFT, {'pit': 300, 'target': 3000, 'near': 2090 + TURN_END - 100,
+                            'near_back': 2000 - TURN_END_REAR_FIRST + 100})
+    with pytest.raises(planner.PlanError) as refused:
+        run(net, *route)
+    assert '%s (%d mm) lies before where mitre_1 leaves the robot (its middle at %d mm)' % (
+        route[-1], dict(near=2090 + TURN_END - 100, near_back=2000 - TURN_END_REAR_FIRST + 100)[route[-1]],
+        leaves_mm) in str(refused.value)
+
+
 def tee_run(side):
     return world([{'type': 'straight', 'length_mm': 1500}, {'type': 'tee', 'enter': 'run', 'side': side},
                   {'type': 'straight', 'length_mm': 1500}], {'a': 200, 'b': 2500})
@@ -279,7 +292,7 @@ def test_the_printed_plan_has_one_line_per_goal():
     (['pit', 'pit'], 'the same place'),
     (['pit', 'in_bend'], 'lies in a mitre'),
     (['near_bend', 'target'], 'too close to mitre_1'),
-    (['pit', 'just_after'], 'within 350 mm after mitre_1'),
+    (['pit', 'just_after'], 'lies before where mitre_1 leaves the robot'),
 ])
 def test_routes_the_map_cannot_serve_are_refused_with_the_reason(route, reason):
     net = world(BEND_LEFT, {'pit': 300, 'target': 3000, 'in_bend': 2050, 'near_bend': 1800, 'just_after': 2200})

@@ -140,8 +140,8 @@ class _Planner(object):
             self._clamp(STRAIGHT_CLAMP, 'before driving to %s' % name_b)
         to_go_mm = (b - self.at) * 1000
         if to_go_mm * sign < -self.settings['min_drive_mm']:
-            raise PlanError('%s lies within %.0f mm after %s: the robot ends past it'
-                            % (name_b, self.settings['clear_mm'], crossed[-1 if sign > 0 else 0].name))
+            raise PlanError('%s (%.0f mm) lies before where %s leaves the robot (its middle at %.0f mm): the robot '
+                            'ends past it' % (name_b, b * 1000, crossed[-1 if sign > 0 else 0].name, self.at * 1000))
         self._drive(to_go_mm, 'to %s' % name_b)
 
     def _take(self, junction, sign, came_from):
