@@ -67,6 +67,8 @@ FRONT_LEADS = Lead.of('front')
 
 #: The key of the ``turn`` row whose entries stand for the row's own when the rear leads.
 REAR_FIRST_KEY = 'rear_first'
+#: The front module's lift before a turn taken rear first pulls it round the corner.
+TRAIL_LIFT = 'move_front_trail'
 
 
 def turn_row(guards, lead=None):
@@ -413,9 +415,13 @@ def bring_trail(ctx, lead=None):
     ``rear_through_rad``): the front part lies in the new pipe (twin: the
     front V bent round the corner at Bend I +1.17 while Bend II stood at -0.36
     and never passed -0.6; held toward its clamp, the whole front part came
-    into the new pipe, Bend I -0.56, Bend II +0.35)."""
+    into the new pipe, Bend I -0.56, Bend II +0.35). Pulled through, the
+    front module is lifted first (``move_front_trail``): at a side's lift
+    (0.16) its nose caught the bend's wall."""
     lead = lead or FRONT_LEADS
     row, prims = turn_row(ctx.guards, lead), ctx.prims
+    if lead.trail == 'front':
+        prims.move_front(TRAIL_LIFT)
     counts = int(row['rear_bend_counts'])
     torque(prims, **{lead.inner: 0, lead.trail_inner: counts, lead.trail_outer: -counts})
     through = float(row['rear_through_rad'])
