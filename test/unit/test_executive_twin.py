@@ -413,6 +413,18 @@ def test_a_route_through_a_bend_after_a_long_drive_and_past_a_side_tee_needs_no_
     assert rear_along_m > tee.exit_m, (rear_along_m, tee)
 
 
+def there_and_back(world, far_point, seed):
+    """Launch pit -> ``far_point`` -> launch pit on ``world`` from upright:
+    (map, robot, executive, outcome, the robot's true middle at the end, m along)."""
+    pipe_map = network.load(network.world_path(world))
+    plan = planner.plan(pipe_map, ['launch_pit', far_point, 'launch_pit'], SETTINGS, MAX_DRIVE_MM, None, True)
+    planner.check_runnable(plan)
+    with SimHarness(world=world, orientation=UPRIGHT, seed=seed) as h:
+        robot, run = executive(plan, h, pipe_map.points['launch_pit'])
+        outcome = finished(run, *run_in_thread(run))
+        return pipe_map, robot, run, outcome, robot_along_m(pipe_map, h.ground_truth())
+
+
 def test_a_mission_there_and_back_through_a_bend_and_a_t_joint_ends_at_the_launch_pit():
     """inspection_network_90 to its point past the T-joint: launch pit ->
     past the T-joint -> launch pit. On the way in the mitre bend LEFT and the
@@ -420,13 +432,7 @@ def test_a_mission_there_and_back_through_a_bend_and_a_t_joint_ends_at_the_launc
     T-joint and the bend rear first (negative search distances), re-anchored
     at each; the robot ends at the launch pit (ground truth within 100 mm:
     the last drive is by odometry from where the bend taken rear first ends)."""
-    pipe_map = network.load(network.world_path('inspection_network_90'))
-    plan = planner.plan(pipe_map, ['launch_pit', 'past_tee', 'launch_pit'], SETTINGS, MAX_DRIVE_MM, None, True)
-    planner.check_runnable(plan)
-    with SimHarness(world='inspection_network_90', orientation=UPRIGHT, seed=11) as h:
-        robot, run = executive(plan, h, pipe_map.points['launch_pit'])
-        outcome = finished(run, *run_in_thread(run))
-        truth_m = robot_along_m(pipe_map, h.ground_truth())
+    pipe_map, robot, run, outcome, truth_m = there_and_back('inspection_network_90', 'past_tee', seed=11)
     assert outcome.status == 'succeeded', outcome.log
     junction_goals = [(g.step.pab, g.step.option, g.step.distance_mm < 0) for g in robot.goals
                       if g.step.junction is not None]
@@ -444,13 +450,7 @@ def test_the_way_back_through_a_bend_whose_rear_slips_on_its_far_wall_ends_at_th
     mission ends at the launch pit, its estimate there within 50 mm of the
     truth. Bounded as on the way in it stopped ``mismatch`` with the rear
     short of the bend."""
-    pipe_map = network.load(network.world_path('inspection_90'))
-    plan = planner.plan(pipe_map, ['launch_pit', 'after_bend', 'launch_pit'], SETTINGS, MAX_DRIVE_MM, None, True)
-    planner.check_runnable(plan)
-    with SimHarness(world='inspection_90', orientation=UPRIGHT, seed=23) as h:
-        robot, run = executive(plan, h, pipe_map.points['launch_pit'])
-        outcome = finished(run, *run_in_thread(run))
-        truth_m = robot_along_m(pipe_map, h.ground_truth())
+    pipe_map, robot, run, outcome, truth_m = there_and_back('inspection_90', 'after_bend', seed=23)
     assert outcome.status == 'succeeded', outcome.log
     assert [(g.step.pab, g.step.distance_mm < 0) for g in robot.goals if g.step.junction is not None] == [
         ('MITRE_BEND', False), ('MITRE_BEND', True)]
