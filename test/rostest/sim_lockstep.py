@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """rostest: the simulated robot runs in lockstep with the stack (doc/clock.md).
 
-1. While a consumer is held (pirate_state stopped with SIGSTOP, the fault a
-   loaded laptop makes), simulated time advances at most one Mega cycle
+1. Once the manager acknowledges the states it takes in, while a consumer
+   is held (pirate_state stopped with SIGSTOP, the fault a loaded laptop
+   makes), simulated time advances at most one Mega cycle
    (this test allows two: its own view of /clock may lag by one):
    the simulator waits for the manager's acknowledgement (the launch sets
    its wall bound far above the hold, so only the lockstep can hold it).
@@ -25,7 +26,9 @@ import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
 from rosgraph_msgs.msg import Clock
+from std_msgs.msg import Time
 
+from pirate import names
 from pirate.msg import PirateGoal
 from seq_experiment import SequencerTest
 
@@ -61,14 +64,25 @@ class SimLockstepTest(SequencerTest):
     def setUpClass(cls):
         super(SimLockstepTest, cls).setUpClass()
         cls.clock_lock = threading.Lock()
-        cls.clock_s = None
+        cls.clock_s, cls.acknowledged_s = None, None
         rospy.Subscriber('/clock', Clock, cls._on_clock, queue_size=1)   # the newest only
-        cls._wait(lambda: cls._clock() is not None, '/clock', 30.0)
+        rospy.Subscriber(names.LOCKSTEP_TOPIC, Time, cls._on_acknowledged, queue_size=1)
+        # The simulator waits for the stack only once the stack acknowledges its
+        # cycles (before, nobody may be listening): the manager must have taken
+        # a state in, and the simulator stepped a few cycles since, before a hold.
+        cls._wait(lambda: cls.acknowledged_s is not None, 'the manager acknowledging a state', 30.0)
+        first = cls.acknowledged_s
+        cls._wait(lambda: (cls._clock() or 0.0) >= first + 0.3, '/clock 0.3 s past the first acknowledgement', 30.0)
 
     @classmethod
     def _on_clock(cls, msg):
         with cls.clock_lock:
             cls.clock_s = msg.clock.to_sec()
+
+    @classmethod
+    def _on_acknowledged(cls, msg):
+        with cls.clock_lock:
+            cls.acknowledged_s = msg.data.to_sec()
 
     @classmethod
     def _clock(cls):
