@@ -120,13 +120,11 @@ def test_the_way_back_takes_the_bend_rear_first_still_clamped_sideways():
     (('pit', 'near'), 2090 + TURN_END),                       # front first: past the bend's exit
     (('pit', 'target', 'near_back'), 2000 - TURN_END_REAR_FIRST)])   # rear first: before its entry
 def test_a_point_the_turn_carries_the_robot_past_is_refused_naming_where_the_turn_leaves_it(route, leaves_mm):
-    net = world(BEND_LEFT, {'pit': 300, 'target': 3000, 'near': 2090 + TURN_END - 100,
-                            'near_back': 2000 - TURN_END_REAR_FIRST + 100})
+    points = {'pit': 300, 'target': 3000, 'near': 2090 + TURN_END - 100, 'near_back': 2000 - TURN_END_REAR_FIRST + 100}
     with pytest.raises(planner.PlanError) as refused:
-        run(net, *route)
+        run(world(BEND_LEFT, points), *route)
     assert '%s (%d mm) lies before where mitre_1 leaves the robot (its middle at %d mm)' % (
-        route[-1], dict(near=2090 + TURN_END - 100, near_back=2000 - TURN_END_REAR_FIRST + 100)[route[-1]],
-        leaves_mm) in str(refused.value)
+        route[-1], points[route[-1]], leaves_mm) in str(refused.value)
 
 
 def tee_run(side):
